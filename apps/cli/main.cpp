@@ -1,0 +1,227 @@
+// pdesurf: the command line. Thin: parse arguments, call the library, report.
+// Exit codes: 0 success, 1 bad input (model or mesh file), 2 usage error.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "pdesurf/analysis.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model_io.hpp"
+#include "pdesurf/vertex_frames.hpp"
+
+namespace {
+
+using namespace pdesurf;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kExitInput = 1;
+constexpr int kExitUsage = 2;
+
+/// An argument that is well-formed but unusable with this model (exit 2).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct SolveArgs {
+  std::string solver = "global";
+  std::uint32_t seedFrame = 0;
+
+  void add(CLI::App* cmd) {
+    cmd->add_option("--solver", solver, "global: each strip minimises its patches' summed PDE "
+                                        "residual; local: the seed's patch generation rule")
+        ->check(CLI::IsMember({"global", "local"}))
+        ->capture_default_str();
+    cmd->add_option("--seed-frame", seedFrame, "local solver: the frame generation starts from")
+        ->capture_default_str();
+  }
+  SolveOptions options(const VertexFrameModel& model) const {
+    if (seedFrame >= model.frames.size())
+      throw UsageError(fmt::format("--seed-frame {}: the model has {} frames (0 to {})", seedFrame,
+                                   model.frames.size(), model.frames.size() - 1));
+    return {solver == "local" ? Solver::Local : Solver::Global, seedFrame};
+  }
+};
+
+void printNotes(const VertexFrameSurface& surface, const std::string& model) {
+  for (const std::string& note : surface.notes) fmt::print(stderr, "{}: note: {}\n", model, note);
+}
+
+std::string modelName(const VertexFrameModel& model, const std::string& path) {
+  if (!model.name.empty()) return model.name;
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+int runBuild(const std::string& modelPath, const std::string& outPath, std::uint32_t resolution,
+             const SolveArgs& args, bool quiet) {
+  try {
+    meshFormatFromPath(outPath);  // an unknown extension fails before any work
+  } catch (const MeshIoError& e) {
+    throw UsageError(e.what());
+  }
+  const VertexFrameModel model = loadVertexFrameModel(modelPath);
+  const SolveOptions options = args.options(model);
+  auto t0 = Clock::now();
+  const VertexFrameSurface surface = solve(model, options);
+  const double solveMs = msSince(t0);
+  printNotes(surface, modelPath);
+  t0 = Clock::now();
+  const Mesh mesh = tessellate(surface, {resolution});
+  const double tessMs = msSince(t0);
+  t0 = Clock::now();
+  writeMesh(mesh, outPath);
+  const double writeMs = msSince(t0);
+  if (!quiet) {
+    const C0Report c0 = measureC0Gap(surface);
+    fmt::print("{}: {} frames, {} strips, {} vertices, {} triangles, C0 gap {:.3g} -> {} "
+               "(solve {:.3f} ms, tessellate {:.3f} ms, write {:.1f} ms)\n",
+               modelName(model, modelPath), model.frames.size(), surface.topology.stripCount,
+               mesh.vertexCount(), mesh.triangleCount(), c0.maxGap, outPath, solveMs, tessMs,
+               writeMs);
+  }
+  return 0;
+}
+
+int runSample(const std::string& modelPath, std::uint32_t grid, const SolveArgs& args) {
+  const VertexFrameModel model = loadVertexFrameModel(modelPath);
+  const VertexFrameSurface surface = solve(model, args.options(model));
+  printNotes(surface, modelPath);
+  // nlohmann writes doubles in their shortest round-trip form.
+  nlohmann::json patches = nlohmann::json::array();
+  for (std::size_t k = 0; k < surface.patches.size(); ++k) {
+    nlohmann::json points = nlohmann::json::array();
+    for (std::uint32_t j = 0; j < grid; ++j)
+      for (std::uint32_t i = 0; i < grid; ++i) {
+        const double u = static_cast<double>(i) / (grid - 1);
+        const double v = static_cast<double>(j) / (grid - 1);
+        const Vec3 p = surface.patches[k].position(u, v);
+        points.push_back({p.x(), p.y(), p.z()});
+      }
+    patches.push_back({{"frame", k}, {"grid", grid}, {"points", std::move(points)}});
+  }
+  std::cout << nlohmann::json{{"patches", std::move(patches)}}.dump() << '\n';
+  return 0;
+}
+
+int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
+  const VertexFrameModel model = loadVertexFrameModel(modelPath);
+  const VertexFrameSurface surface = solve(model, args.options(model));
+  printNotes(surface, modelPath);
+  const C0Report c0 = measureC0Gap(surface);
+  const Bounds b = surfaceBounds(surface);
+  const double diag = b.diagonal();
+  const double rel = diag > 0.0 ? c0.maxGap / diag : c0.maxGap;
+  std::size_t pinned = 0;
+  for (auto p : surface.topology.stripPinned) pinned += p;
+  const std::size_t storage = storageBytes(model);
+  if (json) {
+    nlohmann::json j = {
+        {"model", modelPath},
+        {"name", model.name},
+        {"vertices", model.vertices.size()},
+        {"frames", model.frames.size()},
+        {"strips", surface.topology.stripCount},
+        {"pinned_strips", pinned},
+        {"edges", surface.topology.edges.size()},
+        {"shared_edges", c0.sharedEdges},
+        {"orientable", surface.topology.orientable},
+        {"c0_gap", c0.maxGap},
+        {"c0_gap_relative", rel},
+        {"bbox", {{"min", {b.min.x(), b.min.y(), b.min.z()}},
+                  {"max", {b.max.x(), b.max.y(), b.max.z()}}}},
+        {"storage_bytes", storage},
+        {"solver", args.solver},
+        {"notes", surface.notes}};
+    std::cout << j.dump(2) << '\n';
+    return 0;
+  }
+  fmt::print("model      {}{}\n", modelPath, model.name.empty() ? "" : " (" + model.name + ")");
+  fmt::print("vertices   {}\nframes     {}\n", model.vertices.size(), model.frames.size());
+  fmt::print("strips     {} ({} pinned to 0)\n", surface.topology.stripCount, pinned);
+  fmt::print("edges      {} ({} shared)\n", surface.topology.edges.size(), c0.sharedEdges);
+  fmt::print("C0 gap     {} (relative to the bounding-box diagonal: {})\n", c0.maxGap, rel);
+  fmt::print("bbox       [{}, {}, {}] to [{}, {}, {}]\n", b.min.x(), b.min.y(), b.min.z(),
+             b.max.x(), b.max.y(), b.max.z());
+  fmt::print("storage    {} bytes (numbers to six significant digits)\n", storage);
+  if (!surface.topology.orientable) fmt::print("orientable no\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pdesurf: PDE-based surface modelling from vertex-frames.\n"
+               "Exit status: 0 success, 1 invalid input file, 2 usage error."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "pdesurf 0.1.0");
+
+  std::string modelPath, outPath;
+  std::uint32_t resolution = 17, grid = 0;
+  bool json = false, quiet = false;
+  SolveArgs solveArgs;
+
+  CLI::App* build = app.add_subcommand("build", "Solve a model and write its mesh (OBJ, PLY, STL or "
+                                                "glb, chosen by the output's extension)");
+  build->add_option("model", modelPath, "model file (JSON)")->required();
+  build->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb")->required();
+  build->add_option("--resolution", resolution, "samples per patch side")
+      ->check(CLI::Range(2u, 4097u))
+      ->capture_default_str();
+  build->add_flag("-q,--quiet", quiet, "print nothing on success");
+  solveArgs.add(build);
+
+  CLI::App* sample = app.add_subcommand(
+      "sample", "Print each patch sampled on a grid as JSON: points[j*N+i] = S(i/(N-1), j/(N-1))");
+  sample->add_option("model", modelPath, "model file (JSON)")->required();
+  sample->add_option("--grid", grid, "samples per patch side (N)")
+      ->required()
+      ->check(CLI::Range(2u, 4097u));
+  solveArgs.add(sample);
+
+  CLI::App* info = app.add_subcommand(
+      "info", "Counts, the largest C0 gap on shared edges, bounding box and storage size");
+  info->add_option("model", modelPath, "model file (JSON)")->required();
+  info->add_flag("--json", json, "print JSON");
+  solveArgs.add(info);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+
+  try {
+    if (*build) return runBuild(modelPath, outPath, resolution, solveArgs, quiet);
+    if (*sample) return runSample(modelPath, grid, solveArgs);
+    return runInfo(modelPath, json, solveArgs);
+  } catch (const UsageError& e) {
+    fmt::print(stderr, "pdesurf: {}\n", e.what());
+    return kExitUsage;
+  } catch (const MeshIoError& e) {
+    fmt::print(stderr, "pdesurf: {}\n", e.what());
+    return kExitInput;
+  } catch (const ModelError& e) {
+    fmt::print(stderr, "pdesurf: {}\n", e.what());
+    return kExitInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "pdesurf: {}\n", e.what());
+    return kExitInput;
+  }
+}

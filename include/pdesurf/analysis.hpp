@@ -1,0 +1,46 @@
+// Measurements of solved surfaces and models: continuity gaps, bounds, storage.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "pdesurf/vertex_frames.hpp"
+
+namespace pdesurf {
+
+/// Relative C0 gap (gap / bounding-box diagonal) that counts as exact continuity: each
+/// coefficient is a small-integer combination of a few vertices, so two patches evaluate
+/// a shared edge with a rounding error of a few tens of ulps of the model's size;
+/// 1e-12 leaves several hundred times that as headroom and is far below anything visible.
+constexpr double kC0RelativeTolerance = 1e-12;
+
+struct Bounds {
+  Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 max = Vec3::Constant(-std::numeric_limits<double>::infinity());
+  void add(const Vec3& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  double diagonal() const { return min.x() <= max.x() ? (max - min).norm() : 0.0; }
+};
+
+struct C0Report {
+  double maxGap = 0.0;          ///< largest distance between two patches on a shared edge
+  std::size_t sharedEdges = 0;  ///< edges run by two or more sides
+  std::uint32_t worstEdge = 0;  ///< index into topology.edges of the largest gap
+};
+
+/// Samples every shared edge at `samples` parameters (ends included) on each side that
+/// runs it and measures the distance to the first side's point at the same place.
+C0Report measureC0Gap(const VertexFrameSurface& surface, std::uint32_t samples = 65);
+
+/// Bounds of the surface sampled on a samples × samples grid per patch.
+Bounds surfaceBounds(const VertexFrameSurface& surface, std::uint32_t samples = 17);
+
+/// The model's storage in bytes under the seed's Table 1 convention: every number written
+/// to six significant digits as plain text, one space between numbers and a newline after
+/// each record: a vertex (x y z), a frame (its 8 indices, a1, a2, then f0 and region of
+/// each force), a shared force (f0 and its frame indices).
+std::size_t storageBytes(const VertexFrameModel& model);
+
+}  // namespace pdesurf

@@ -1,0 +1,36 @@
+// Model files: JSON documents with a "type" (docs/model-format.md).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "pdesurf/vertex_frames.hpp"
+
+namespace pdesurf {
+
+/// A model file is malformed or invalid. what() reads "FILE: $.json.path: what is wrong".
+class ModelError : public std::runtime_error {
+ public:
+  ModelError(const std::string& file, const std::string& jsonPath, const std::string& problem);
+  const std::string& file() const { return file_; }
+  const std::string& jsonPath() const { return jsonPath_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string file_, jsonPath_, problem_;
+};
+
+/// Parses and validates a `"type": "vertex-frames"` model; `source` names it in errors.
+/// Everything a solver assumes is checked here: counts, types, finite numbers, indices,
+/// shared edges that agree, force regions, and forces whose PDE has a solution.
+VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string& source);
+
+/// Reads and parses a model file (errors name the path).
+VertexFrameModel loadVertexFrameModel(const std::string& path);
+
+/// The model as JSON text that parseVertexFrameModel reads back to the same model
+/// (numbers written shortest round-trip; defaults omitted).
+std::string serializeVertexFrameModel(const VertexFrameModel& model);
+
+}  // namespace pdesurf

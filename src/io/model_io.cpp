@@ -1,0 +1,289 @@
+// Parsing, validation and writing of vertex-frame model files.
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "pdesurf/model_io.hpp"
+
+namespace pdesurf {
+
+ModelError::ModelError(const std::string& file, const std::string& jsonPath,
+                       const std::string& problem)
+    : std::runtime_error(jsonPath.empty() ? fmt::format("{}: {}", file, problem)
+                                          : fmt::format("{}: {}: {}", file, jsonPath, problem)),
+      file_(file),
+      jsonPath_(jsonPath),
+      problem_(problem) {}
+
+namespace {
+
+using Json = nlohmann::json;
+
+const char* kComponents[3] = {"x", "y", "z"};
+
+/// Readable names of the four sides, for messages.
+const char* sideName(Side s) {
+  switch (s) {
+    case Side::Alpha: return "P1-P2-P3";
+    case Side::Delta: return "P3-P4-P5";
+    case Side::Beta: return "P7-P6-P5";
+    default: return "P1-P8-P7";
+  }
+}
+
+const char* typeName(const Json& j) {
+  if (j.is_null()) return "null";
+  if (j.is_boolean()) return "a boolean";
+  if (j.is_number()) return "a number";
+  if (j.is_string()) return "a string";
+  if (j.is_array()) return "an array";
+  return "an object";
+}
+
+/// Walks a document, checking as it goes; every error names the file and the JSON path.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
+    throw ModelError(source_, path, problem);
+  }
+
+  const Json& member(const Json& obj, const std::string& path, const char* key) const {
+    auto it = obj.find(key);
+    if (it == obj.end()) fail(path, fmt::format("missing required field \"{}\"", key));
+    return *it;
+  }
+
+  void expectObject(const Json& j, const std::string& path) const {
+    if (!j.is_object()) fail(path, fmt::format("expected an object, found {}", typeName(j)));
+  }
+
+  void expectArray(const Json& j, const std::string& path, std::size_t minSize) const {
+    if (!j.is_array()) fail(path, fmt::format("expected an array, found {}", typeName(j)));
+    if (j.size() < minSize)
+      fail(path, fmt::format("expected at least {} entr{}, found {}", minSize,
+                             minSize == 1 ? "y" : "ies", j.size()));
+  }
+
+  double number(const Json& j, const std::string& path) const {
+    if (!j.is_number()) fail(path, fmt::format("expected a number, found {}", typeName(j)));
+    const double x = j.get<double>();
+    if (!std::isfinite(x)) fail(path, "number is not finite");
+    return x;
+  }
+
+  template <std::size_t N>
+  std::array<double, N> numbers(const Json& j, const std::string& path) const {
+    if (!j.is_array() || j.size() != N)
+      fail(path, j.is_array() ? fmt::format("expected {} numbers, found {}", N, j.size())
+                              : fmt::format("expected an array of {} numbers, found {}", N,
+                                            typeName(j)));
+    std::array<double, N> out{};
+    for (std::size_t i = 0; i < N; ++i) out[i] = number(j[i], fmt::format("{}[{}]", path, i));
+    return out;
+  }
+
+  Vec3 vec3(const Json& j, const std::string& path) const {
+    const auto a = numbers<3>(j, path);
+    return {a[0], a[1], a[2]};
+  }
+
+  std::uint32_t index(const Json& j, const std::string& path, std::size_t count,
+                      const char* what) const {
+    if (!j.is_number_integer())
+      fail(path, fmt::format("expected an integer {} index, found {}", what,
+                             j.is_number() ? "a fractional number" : typeName(j)));
+    const auto i = j.get<std::int64_t>();
+    if (i < 0 || static_cast<std::uint64_t>(i) >= count)
+      fail(path, fmt::format("{} index {} is out of range (the model has {} {}s, indices 0 to {})",
+                             what, i, count, what, count == 0 ? 0 : count - 1));
+    return static_cast<std::uint32_t>(i);
+  }
+
+  Region region(const Json& j, const std::string& path) const {
+    const auto r = numbers<4>(j, path);
+    for (int i = 0; i < 4; ++i)
+      if (r[i] < 0.0 || r[i] > 1.0)
+        fail(path, fmt::format("region bounds must lie in [0, 1], found {}", r[i]));
+    if (!(r[0] < r[1])) fail(path, fmt::format("empty or inverted region: u0 = {} is not below u1 = {}", r[0], r[1]));
+    if (!(r[2] < r[3])) fail(path, fmt::format("empty or inverted region: v0 = {} is not below v1 = {}", r[2], r[3]));
+    return {r[0], r[1], r[2], r[3]};
+  }
+
+  /// A force must have a particular solution: a1/Lu² + a2/Lv² ≠ 0 where f0 ≠ 0.
+  void checkSolvable(const Frame& f, const Vec3& f0, const Region& r, const std::string& path,
+                     std::uint32_t frame) const {
+    const double lu = r.u1 - r.u0, lv = r.v1 - r.v0;
+    for (int c = 0; c < 3; ++c) {
+      if (f0[c] == 0.0) continue;
+      const double den = f.a1[c] / (lu * lu) + f.a2[c] / (lv * lv);
+      if (den == 0.0 || !std::isfinite(den))
+        fail(path, fmt::format("on frame {}, a1.{}/Lu² + a2.{}/Lv² is 0 (a1.{} = {}, a2.{} = {}, "
+                               "Lu = {}, Lv = {}), so the force component f0.{} = {} has no "
+                               "solution: change a1, a2 or the region",
+                               frame, kComponents[c], kComponents[c], kComponents[c], f.a1[c],
+                               kComponents[c], f.a2[c], lu, lv, kComponents[c], f0[c]));
+    }
+  }
+
+ private:
+  std::string source_;
+};
+
+}  // namespace
+
+VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string& source) {
+  Reader rd(source);
+  Json doc;
+  try {
+    doc = Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error& e) {
+    // nlohmann's text reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    std::string what = e.what();
+    const auto at = what.find("parse error");
+    rd.fail("", fmt::format("malformed JSON: {}", at == std::string::npos ? what : what.substr(at)));
+  }
+  rd.expectObject(doc, "$");
+  const Json& type = rd.member(doc, "$", "type");
+  if (!type.is_string()) rd.fail("$.type", fmt::format("expected a string, found {}", typeName(type)));
+  if (type.get<std::string>() != "vertex-frames")
+    rd.fail("$.type", fmt::format("unknown model type \"{}\" (this reader takes \"vertex-frames\")",
+                                  type.get<std::string>()));
+
+  VertexFrameModel model;
+  if (auto it = doc.find("name"); it != doc.end()) {
+    if (!it->is_string()) rd.fail("$.name", fmt::format("expected a string, found {}", typeName(*it)));
+    model.name = it->get<std::string>();
+  }
+
+  const Json& verts = rd.member(doc, "$", "vertices");
+  rd.expectArray(verts, "$.vertices", 1);
+  model.vertices.reserve(verts.size());
+  for (std::size_t i = 0; i < verts.size(); ++i)
+    model.vertices.push_back(rd.vec3(verts[i], fmt::format("$.vertices[{}]", i)));
+
+  const Json& frames = rd.member(doc, "$", "frames");
+  rd.expectArray(frames, "$.frames", 1);
+  model.frames.resize(frames.size());
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const std::string path = fmt::format("$.frames[{}]", k);
+    const Json& jf = frames[k];
+    rd.expectObject(jf, path);
+    Frame& f = model.frames[k];
+    const Json& fv = rd.member(jf, path, "vertices");
+    if (!fv.is_array() || fv.size() != 8)
+      rd.fail(path + ".vertices",
+              fv.is_array() ? fmt::format("a frame has 8 vertices (P1..P8), found {}", fv.size())
+                            : fmt::format("expected an array of 8 vertex indices, found {}",
+                                          typeName(fv)));
+    for (int i = 0; i < 8; ++i)
+      f.vertices[i] = rd.index(fv[i], fmt::format("{}.vertices[{}]", path, i),
+                               model.vertices.size(), "vertex");
+    if (auto it = jf.find("a1"); it != jf.end()) f.a1 = rd.vec3(*it, path + ".a1");
+    if (auto it = jf.find("a2"); it != jf.end()) f.a2 = rd.vec3(*it, path + ".a2");
+    if (auto it = jf.find("forces"); it != jf.end()) {
+      rd.expectArray(*it, path + ".forces", 0);
+      for (std::size_t i = 0; i < it->size(); ++i) {
+        const std::string fp = fmt::format("{}.forces[{}]", path, i);
+        const Json& jforce = (*it)[i];
+        rd.expectObject(jforce, fp);
+        FrameForce force;
+        force.f0 = rd.vec3(rd.member(jforce, fp, "f0"), fp + ".f0");
+        if (auto r = jforce.find("region"); r != jforce.end())
+          force.region = rd.region(*r, fp + ".region");
+        rd.checkSolvable(f, force.f0, force.region, fp, static_cast<std::uint32_t>(k));
+        f.forces.push_back(force);
+      }
+    }
+  }
+
+  if (auto it = doc.find("forces"); it != doc.end()) {
+    rd.expectArray(*it, "$.forces", 0);
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const std::string fp = fmt::format("$.forces[{}]", i);
+      const Json& jforce = (*it)[i];
+      rd.expectObject(jforce, fp);
+      SharedForce force;
+      force.f0 = rd.vec3(rd.member(jforce, fp, "f0"), fp + ".f0");
+      const Json& list = rd.member(jforce, fp, "frames");
+      rd.expectArray(list, fp + ".frames", 1);
+      std::set<std::uint32_t> seen;
+      for (std::size_t j = 0; j < list.size(); ++j) {
+        const std::string ip = fmt::format("{}.frames[{}]", fp, j);
+        const std::uint32_t k = rd.index(list[j], ip, model.frames.size(), "frame");
+        if (!seen.insert(k).second) rd.fail(ip, fmt::format("frame {} is listed twice", k));
+        rd.checkSolvable(model.frames[k], force.f0, Region{}, fp, k);
+        force.frames.push_back(k);
+      }
+      model.forces.push_back(std::move(force));
+    }
+  }
+
+  const FrameTopology topo = buildTopology(model);
+  if (topo.error.kind == TopologyError::Kind::MiddleVertexDiffers) {
+    const FrameSide a = topo.error.first, b = topo.error.second;
+    const auto sa = sideSlots(a.side), sb = sideSlots(b.side);
+    const auto& fa = model.frames[a.frame].vertices;
+    const auto& fb = model.frames[b.frame].vertices;
+    rd.fail(fmt::format("$.frames[{}].vertices", b.frame),
+            fmt::format("its edge {} shares corner vertices {} and {} with edge {} of frames[{}], "
+                        "but its middle vertex is {} where frames[{}] has {}: frames that share "
+                        "an edge share all three of its vertices",
+                        sideName(b.side), fb[sb[0]], fb[sb[2]], sideName(a.side), a.frame,
+                        fb[sb[1]], a.frame, fa[sa[1]]));
+  }
+  return model;
+}
+
+VertexFrameModel loadVertexFrameModel(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path, "", "cannot open the file for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ModelError(path, "", "read error");
+  return parseVertexFrameModel(text.str(), path);
+}
+
+std::string serializeVertexFrameModel(const VertexFrameModel& model) {
+  auto vec = [](const Vec3& v) { return fmt::format("[{}, {}, {}]", v.x(), v.y(), v.z()); };
+  std::string out = "{\n  \"type\": \"vertex-frames\",\n";
+  if (!model.name.empty()) out += fmt::format("  \"name\": {},\n", Json(model.name).dump());
+  out += "  \"vertices\": [\n";
+  for (std::size_t i = 0; i < model.vertices.size(); ++i)
+    out += fmt::format("    {}{}\n", vec(model.vertices[i]), i + 1 < model.vertices.size() ? "," : "");
+  out += "  ],\n  \"frames\": [\n";
+  for (std::size_t k = 0; k < model.frames.size(); ++k) {
+    const Frame& f = model.frames[k];
+    out += fmt::format("    {{\"vertices\": [{}]", fmt::join(f.vertices, ", "));
+    if (f.a1 != Vec3::Ones()) out += fmt::format(", \"a1\": {}", vec(f.a1));
+    if (f.a2 != Vec3::Ones()) out += fmt::format(", \"a2\": {}", vec(f.a2));
+    if (!f.forces.empty()) {
+      out += ", \"forces\": [";
+      for (std::size_t i = 0; i < f.forces.size(); ++i) {
+        const Region& r = f.forces[i].region;
+        out += fmt::format("{}{{\"f0\": {}, \"region\": [{}, {}, {}, {}]}}", i ? ", " : "",
+                           vec(f.forces[i].f0), r.u0, r.u1, r.v0, r.v1);
+      }
+      out += "]";
+    }
+    out += fmt::format("}}{}\n", k + 1 < model.frames.size() ? "," : "");
+  }
+  out += "  ]";
+  if (!model.forces.empty()) {
+    out += ",\n  \"forces\": [\n";
+    for (std::size_t i = 0; i < model.forces.size(); ++i)
+      out += fmt::format("    {{\"f0\": {}, \"frames\": [{}]}}{}\n", vec(model.forces[i].f0),
+                         fmt::join(model.forces[i].frames, ", "),
+                         i + 1 < model.forces.size() ? "," : "");
+    out += "  ]";
+  }
+  out += "\n}\n";
+  return out;
+}
+
+}  // namespace pdesurf
