@@ -390,22 +390,24 @@ def mug():
     handle_angle = math.radians(26.0)
     lat = revolution(m, rings, angles=column_angles([26.0] + [(360.0 - 26.0) / 7] * 7))
     rows = len(rings) // 2
-    upper, lower = (4, 0), (2, 0)  # lattice rows 1 + row index: the base is row 0
-    frames = m.grid_frames(lat, rows, 8, skip=(upper, lower))
+    # Frame row 0 is the base, so wall row k is frame row k + 1; the handle replaces the
+    # column-0 frames of wall rows 3 (upper end) and 1 (lower end).
+    upper, lower = 3, 1
+    m.grid_frames(lat, rows, 8, skip=((upper + 1, 0), (lower + 1, 0)))
 
     # The handle: a swept tube on a half ellipse in the xz-plane, from the upper hole out,
     # down and back into the lower hole. Cross-section coordinates (y, up) per ring slot
     # b = 0..7 follow the hole frame's P1..P8; at the lower end the path has turned half
     # a circle, so slot b meets the lower hole's P(7-b) (0-based (6-b) mod 8).
-    hole_top = [lat[2 * upper[0] + di, dj] for di, dj in FRAME_LATTICE]
-    hole_bottom = [lat[2 * lower[0] + di, dj] for di, dj in FRAME_LATTICE]
-    z_top = (zs[6] + zs[8]) / 2
-    z_bottom = (zs[2] + zs[4]) / 2
+    hole_top = lat.frame(upper + 1, 0)
+    hole_bottom = lat.frame(lower + 1, 0)
+    z_top = (zs[2 * upper] + zs[2 * upper + 2]) / 2
+    z_bottom = (zs[2 * lower] + zs[2 * lower + 2]) / 2
     zc, half = (z_top + z_bottom) / 2, (z_top - z_bottom) / 2
     reach = 0.75
     x0 = radius * (1 + math.cos(handle_angle / 2)) / 2 + flare * zc / height  # the holes' centres
     segments = 4
-    w_end, h_end = radius * math.sin(handle_angle / 2), row_heights[3] / 2
+    w_end, h_end = radius * math.sin(handle_angle / 2), row_heights[upper] / 2
     w_mid, h_mid = 0.15, 0.1
     slots = [(-1, -1), (0, -1), (1, -1), (1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0)]
 
@@ -443,16 +445,19 @@ def mug():
             p = add(p, scale(end_offsets[end, j], weight))
         return p
 
+    # Tube lattice: row i along the tube (ring i/2), column j around it (slot j); a tube
+    # frame's first side (P1 P2 P3) at ring 0 is the upper hole's side through slots
+    # 2k, 2k+1, 2k+2, so the tube's end edges are exactly the removed frame's edges.
     tube_lat = m.lattice(segments, 4, tube)
     m.grid_frames(tube_lat, segments, 4)
-    assert frames
     return m
 
 
 def basket():
     m = Model("basket", "A basket (seed Figs. 3 and 11): a bowl with a closed bottom and an "
               "open rim, and a strap arching from one side of the rim to the other; the "
-              "strap's u runs along it, across the bowl's v, and its joint frames set a1.")
+              "strap's u runs along the strap where the bowl's runs around the rim, and the "
+              "two joint frames set a1.")
     rim_radius, rim_height = 1.25, 1.0
     base = 0.85
     wall = [(base + (rim_radius - base) * t + 0.08 * math.sin(math.pi * t), rim_height * t)
@@ -529,18 +534,23 @@ def dress():
               "hem waves in eight folds, open at the hem and neckline, and two shoulder "
               "straps whose ends are neckline edges (branches).")
     # (z, x radius, y radius) from the hem up to the neckline; the front faces -y.
-    keys = [(0.0, 0.95, 0.88), (0.4, 0.66, 0.56), (0.75, 0.46, 0.33), (1.0, 0.35, 0.25),
-            (1.3, 0.44, 0.31), (1.55, 0.40, 0.27)]
+    keys = [(0.0, 0.95, 0.88), (0.4, 0.66, 0.56), (0.8, 0.45, 0.33), (1.05, 0.34, 0.25),
+            (1.4, 0.44, 0.31), (1.7, 0.40, 0.27)]
     rows = 6
     levels = resample([k for k in keys], 2 * rows, [1.5, 1.5, 1.2, 1.2, 1.0, 1.0, 0.9, 0.9,
                                                      1.0, 1.0, 0.8, 0.8])
     cols = 8
+    even = column_angles([360.0 / cols] * cols)
+    # At the neckline the odd columns, where the straps start, are narrow; the columns
+    # even out from the bust down to the waist.
+    neck = column_angles([65.0, 25.0] * (cols // 2))
 
     def position(i, j):
         z, rx, ry = levels[i]
-        a = (j - 1) * math.pi / cols
-        fold = max(0.0, (0.78 - z) / 0.78) ** 1.6  # folds fade out towards the hips
-        wave = math.cos(cols * a)  # -1 at frame corners, +1 at middles
+        t = min(1.0, max(0.0, (z - 1.05) / 0.5))
+        a = even[j] + (neck[j] - even[j]) * t * t * (3 - 2 * t)
+        fold = max(0.0, (0.8 - z) / 0.8) ** 1.6  # folds fade out towards the hips
+        wave = 1.0 if j % 2 else -1.0  # frame corners in, middles out
         s = 1.0 + 0.07 * fold * wave
         return (rx * s * math.cos(a), ry * s * math.sin(a), z - 0.03 * fold * wave)
 
@@ -551,7 +561,7 @@ def dress():
     # Shoulder straps: from a front neckline edge (columns 7 and 5) over the shoulder to
     # the back edge (columns 1 and 3); slot b pairs the inner corners, middles, outer corners.
     n = 3
-    lift = 0.32
+    lift = 0.26
     for front, back in (((14, 15, 16), (4, 3, 2)), ((12, 11, 10), (6, 7, 8))):
         def strap(b, a, front=front, back=back):
             if a == 0:

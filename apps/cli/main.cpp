@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pdesurf/analysis.hpp"
@@ -37,8 +37,9 @@ struct SolveArgs {
   std::uint32_t seedFrame = 0;
 
   void add(CLI::App* cmd) {
-    cmd->add_option("--solver", solver, "global: each strip minimises its patches' summed PDE "
-                                        "residual; local: the seed's patch generation rule")
+    cmd->add_option("--solver", solver,
+                    "global: each strip minimises its patches' summed PDE "
+                    "residual; local: the seed's patch generation rule")
         ->check(CLI::IsMember({"global", "local"}))
         ->capture_default_str();
     cmd->add_option("--seed-frame", seedFrame, "local solver: the frame generation starts from")
@@ -46,8 +47,11 @@ struct SolveArgs {
   }
   SolveOptions options(const VertexFrameModel& model) const {
     if (seedFrame >= model.frames.size())
-      throw UsageError(fmt::format("--seed-frame {}: the model has {} frames (0 to {})", seedFrame,
-                                   model.frames.size(), model.frames.size() - 1));
+      throw UsageError(
+          fmt::format("--seed-frame {}: out of range, the model has {} frame{} "
+                      "(indices 0 to {})",
+                      seedFrame, model.frames.size(), model.frames.size() == 1 ? "" : "s",
+                      model.frames.size() - 1));
     return {solver == "local" ? Solver::Local : Solver::Global, seedFrame};
   }
 };
@@ -83,11 +87,11 @@ int runBuild(const std::string& modelPath, const std::string& outPath, std::uint
   const double writeMs = msSince(t0);
   if (!quiet) {
     const C0Report c0 = measureC0Gap(surface);
-    fmt::print("{}: {} frames, {} strips, {} vertices, {} triangles, C0 gap {:.3g} -> {} "
-               "(solve {:.3f} ms, tessellate {:.3f} ms, write {:.1f} ms)\n",
-               modelName(model, modelPath), model.frames.size(), surface.topology.stripCount,
-               mesh.vertexCount(), mesh.triangleCount(), c0.maxGap, outPath, solveMs, tessMs,
-               writeMs);
+    fmt::print(
+        "{}: {} frames, {} strips, {} vertices, {} triangles, C0 gap {:.3g} -> {} "
+        "(solve {:.3f} ms, tessellate {:.3f} ms, write {:.1f} ms)\n",
+        modelName(model, modelPath), model.frames.size(), surface.topology->stripCount,
+        mesh.vertexCount(), mesh.triangleCount(), c0.maxGap, outPath, solveMs, tessMs, writeMs);
   }
   return 0;
 }
@@ -122,7 +126,7 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
   const double diag = b.diagonal();
   const double rel = diag > 0.0 ? c0.maxGap / diag : c0.maxGap;
   std::size_t pinned = 0;
-  for (auto p : surface.topology.stripPinned) pinned += p;
+  for (auto p : surface.topology->stripPinned) pinned += p;
   const std::size_t storage = storageBytes(model);
   if (json) {
     nlohmann::json j = {
@@ -130,15 +134,15 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
         {"name", model.name},
         {"vertices", model.vertices.size()},
         {"frames", model.frames.size()},
-        {"strips", surface.topology.stripCount},
+        {"strips", surface.topology->stripCount},
         {"pinned_strips", pinned},
-        {"edges", surface.topology.edges.size()},
+        {"edges", surface.topology->edges.size()},
         {"shared_edges", c0.sharedEdges},
-        {"orientable", surface.topology.orientable},
+        {"orientable", surface.topology->orientable},
         {"c0_gap", c0.maxGap},
         {"c0_gap_relative", rel},
-        {"bbox", {{"min", {b.min.x(), b.min.y(), b.min.z()}},
-                  {"max", {b.max.x(), b.max.y(), b.max.z()}}}},
+        {"bbox",
+         {{"min", {b.min.x(), b.min.y(), b.min.z()}}, {"max", {b.max.x(), b.max.y(), b.max.z()}}}},
         {"storage_bytes", storage},
         {"solver", args.solver},
         {"notes", surface.notes}};
@@ -147,21 +151,22 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
   }
   fmt::print("model      {}{}\n", modelPath, model.name.empty() ? "" : " (" + model.name + ")");
   fmt::print("vertices   {}\nframes     {}\n", model.vertices.size(), model.frames.size());
-  fmt::print("strips     {} ({} pinned to 0)\n", surface.topology.stripCount, pinned);
-  fmt::print("edges      {} ({} shared)\n", surface.topology.edges.size(), c0.sharedEdges);
+  fmt::print("strips     {} ({} pinned to 0)\n", surface.topology->stripCount, pinned);
+  fmt::print("edges      {} ({} shared)\n", surface.topology->edges.size(), c0.sharedEdges);
   fmt::print("C0 gap     {} (relative to the bounding-box diagonal: {})\n", c0.maxGap, rel);
   fmt::print("bbox       [{}, {}, {}] to [{}, {}, {}]\n", b.min.x(), b.min.y(), b.min.z(),
              b.max.x(), b.max.y(), b.max.z());
   fmt::print("storage    {} bytes (numbers to six significant digits)\n", storage);
-  if (!surface.topology.orientable) fmt::print("orientable no\n");
+  if (!surface.topology->orientable) fmt::print("orientable no\n");
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pdesurf: PDE-based surface modelling from vertex-frames.\n"
-               "Exit status: 0 success, 1 invalid input file, 2 usage error."};
+  CLI::App app{
+      "pdesurf: PDE-based surface modelling from vertex-frames.\n"
+      "Exit status: 0 success, 1 invalid input file, 2 usage error."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "pdesurf 0.1.0");
 
@@ -170,8 +175,9 @@ int main(int argc, char** argv) {
   bool json = false, quiet = false;
   SolveArgs solveArgs;
 
-  CLI::App* build = app.add_subcommand("build", "Solve a model and write its mesh (OBJ, PLY, STL or "
-                                                "glb, chosen by the output's extension)");
+  CLI::App* build = app.add_subcommand("build",
+                                       "Solve a model and write its mesh (OBJ, PLY, STL or "
+                                       "glb, chosen by the output's extension)");
   build->add_option("model", modelPath, "model file (JSON)")->required();
   build->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb")->required();
   build->add_option("--resolution", resolution, "samples per patch side")

@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -65,10 +67,14 @@ std::array<int, 3> sideSlots(Side side);
 /// The (u, v) of parameter t along a side (t runs the side's own direction).
 inline std::array<double, 2> sideParam(Side side, double t) {
   switch (side) {
-    case Side::Alpha: return {t, 0.0};
-    case Side::Delta: return {1.0, t};
-    case Side::Beta: return {t, 1.0};
-    default: return {0.0, t};
+    case Side::Alpha:
+      return {t, 0.0};
+    case Side::Delta:
+      return {1.0, t};
+    case Side::Beta:
+      return {t, 1.0};
+    default:
+      return {0.0, t};
   }
 }
 
@@ -82,11 +88,11 @@ struct FrameSide {
 };
 
 /// A boundary curve of the model: the sides of every frame that run through the same
-/// three vertices. `reversed[k]` says whether sides[k] runs end→start of sides[0].
+/// three vertices, listed in FrameTopology::edgeSides[firstSide, firstSide + sideCount).
 struct ModelEdge {
-  std::array<std::uint32_t, 3> vertices{};  ///< start, middle, end as sides[0] runs it
-  std::vector<FrameSide> sides;
-  std::vector<std::uint8_t> reversed;
+  std::array<std::uint32_t, 3> vertices{};  ///< start, middle, end as its first side runs it
+  std::uint32_t firstSide = 0;
+  std::uint32_t sideCount = 0;
   bool collapsed() const { return vertices[0] == vertices[1] && vertices[1] == vertices[2]; }
 };
 
@@ -106,6 +112,10 @@ struct FrameTopology {
   /// through an edge whose corners coincide (a pole), where only 0 keeps it a point.
   std::vector<std::uint8_t> stripPinned;
   std::vector<ModelEdge> edges;
+  /// The sides of every edge, edge after edge (flat: no allocation per edge), and whether
+  /// each runs its edge end→start relative to the edge's first side.
+  std::vector<FrameSide> edgeSides;
+  std::vector<std::uint8_t> edgeSideReversed;
   /// edgeOf[k][s]: index into `edges` of frame k's side s; sideReversed[k][s]: whether
   /// that side runs the edge end→start.
   std::vector<std::array<std::uint32_t, 4>> edgeOf;
@@ -116,6 +126,13 @@ struct FrameTopology {
   /// False when some connected part cannot be oriented consistently (a Möbius band).
   bool orientable = true;
   TopologyError error;
+
+  std::span<const FrameSide> sides(std::uint32_t edge) const {
+    return {edgeSides.data() + edges[edge].firstSide, edges[edge].sideCount};
+  }
+  std::span<const std::uint8_t> reversed(std::uint32_t edge) const {
+    return {edgeSideReversed.data() + edges[edge].firstSide, edges[edge].sideCount};
+  }
 };
 
 /// Derives strips, edges and orientation from the frames' vertex indices. Indices must be
@@ -160,7 +177,8 @@ struct VertexFramePatch {
 /// A solved model: one patch per frame plus the topology it was solved on.
 struct VertexFrameSurface {
   std::vector<VertexFramePatch> patches;
-  FrameTopology topology;
+  /// Shared, immutable: re-solving after a vertex or parameter edit reuses it.
+  std::shared_ptr<const FrameTopology> topology;
   std::vector<Vec3> stripValues;  ///< per strip, per component
   /// Plain-language notes on choices the solver made (e.g. a1 = 0 leaves C3 free: 0).
   std::vector<std::string> notes;
@@ -172,8 +190,7 @@ std::array<Vec3, 10> patchCoefficients(const std::array<Vec3, 8>& p, const Vec3&
 
 /// The single-patch least-squares cubic coefficients (C3, C6) of a frame on its own,
 /// per component: C3 = -(a2/(3 a1)) C9, C6 = -(a1/(3 a2)) C8 (0 where a1 or a2 is 0).
-std::array<Vec3, 2> singlePatchCubics(const std::array<Vec3, 8>& p, const Vec3& a1,
-                                      const Vec3& a2);
+std::array<Vec3, 2> singlePatchCubics(const std::array<Vec3, 8>& p, const Vec3& a1, const Vec3& a2);
 
 /// All forces acting on frame k (its own and the shared ones) as particular solutions.
 std::vector<ForceTerm> forceTerms(const VertexFrameModel& model, std::uint32_t frame);
@@ -183,7 +200,8 @@ VertexFrameSurface solve(const VertexFrameModel& model, const SolveOptions& opti
 
 /// Re-solves with a topology already built for the same frame structure (the studio's
 /// path when only positions, a1, a2 or forces change).
-VertexFrameSurface solve(const VertexFrameModel& model, FrameTopology topology,
+VertexFrameSurface solve(const VertexFrameModel& model,
+                         std::shared_ptr<const FrameTopology> topology,
                          const SolveOptions& options = {});
 
 // ---------------------------------------------------------------------------------------
@@ -198,5 +216,8 @@ struct TessellateOptions {
 /// shared corner, or a collapsed edge) is one vertex; normals come from the analytic
 /// derivatives, averaged over the patches that meet at shared points.
 Mesh tessellate(const VertexFrameSurface& surface, const TessellateOptions& options = {});
+
+/// The same into `out`, reusing its buffers' capacity (no allocation when the sizes repeat).
+void tessellate(const VertexFrameSurface& surface, const TessellateOptions& options, Mesh& out);
 
 }  // namespace pdesurf

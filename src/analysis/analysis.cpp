@@ -7,24 +7,23 @@ namespace pdesurf {
 
 C0Report measureC0Gap(const VertexFrameSurface& surface, std::uint32_t samples) {
   C0Report report;
-  const FrameTopology& topo = surface.topology;
+  const FrameTopology& topo = *surface.topology;
   samples = std::max<std::uint32_t>(samples, 2);
-  for (std::size_t e = 0; e < topo.edges.size(); ++e) {
-    const ModelEdge& edge = topo.edges[e];
-    if (edge.sides.size() < 2) continue;
+  for (std::uint32_t e = 0; e < topo.edges.size(); ++e) {
+    const auto sides = topo.sides(e);
+    const auto reversed = topo.reversed(e);
+    if (sides.size() < 2) continue;
     ++report.sharedEdges;
-    const FrameSide first = edge.sides[0];
     for (std::uint32_t i = 0; i < samples; ++i) {
       const double t = static_cast<double>(i) / (samples - 1);
-      const auto [u0, v0] = sideParam(first.side, t);
-      const Vec3 p0 = surface.patches[first.frame].position(u0, v0);
-      for (std::size_t s = 1; s < edge.sides.size(); ++s) {
-        const double ts = edge.reversed[s] ? 1.0 - t : t;
-        const auto [u, v] = sideParam(edge.sides[s].side, ts);
-        const double gap = (surface.patches[edge.sides[s].frame].position(u, v) - p0).norm();
+      const auto [u0, v0] = sideParam(sides[0].side, t);
+      const Vec3 p0 = surface.patches[sides[0].frame].position(u0, v0);
+      for (std::size_t s = 1; s < sides.size(); ++s) {
+        const auto [u, v] = sideParam(sides[s].side, reversed[s] ? 1.0 - t : t);
+        const double gap = (surface.patches[sides[s].frame].position(u, v) - p0).norm();
         if (gap > report.maxGap) {
           report.maxGap = gap;
-          report.worstEdge = static_cast<std::uint32_t>(e);
+          report.worstEdge = e;
         }
       }
     }

@@ -142,7 +142,7 @@ class AtomicFileWriter {
     checkpoint();
   }
 
-  /// Appends `value` in little-endian byte order.
+  /// Appends `value` in little-endian byte order (call checkpoint() after each record).
   template <typename T>
   void little(T value) {
     static_assert(std::is_trivially_copyable_v<T>);
@@ -157,8 +157,10 @@ class AtomicFileWriter {
     if (::fsync(fd_) != 0) failErrno("cannot write");
     const int fd = std::exchange(fd_, -1);
     if (::close(fd) != 0) failErrno("cannot write");
-    if (std::rename(tempPath_.c_str(), path_.c_str()) != 0)
-      failErrno(fmt::format("cannot rename {} to it", tempPath_));
+    if (std::rename(tempPath_.c_str(), path_.c_str()) != 0) {
+      const int error = errno;
+      fail(path_, "cannot rename {} to it: {}", tempPath_, errnoText(error));
+    }
     committed_ = true;
   }
 
@@ -354,6 +356,9 @@ void writeGlb(const Mesh& mesh, AtomicFileWriter& file, const std::string& path)
           mesh.indices.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER,
           TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
     }
+    // The glb container counts its bytes in 32 bits; leave room for the JSON chunk.
+    if (buffer.data.size() > std::numeric_limits<std::uint32_t>::max() - (std::size_t{1} << 24))
+      fail(path, "{} bytes of mesh data are too many for glb", buffer.data.size());
     model.buffers.push_back(std::move(buffer));
     tinygltf::Mesh gltfMesh;
     gltfMesh.primitives.push_back(std::move(primitive));
@@ -549,14 +554,17 @@ void appendFan(const std::vector<std::uint32_t>& corners, std::vector<std::uint3
 // ---------------------------------------------------------------------------------------------
 // OBJ
 
-/// The 0-based index that OBJ index `raw` (1-based, or negative counting back) denotes.
+/// The 0-based index that OBJ index `raw` (1-based, or negative counting back) denotes, of
+/// one of the `defined` vertices (or normals) so far.
 std::uint32_t resolveObjIndex(std::int64_t raw, std::size_t defined, const Tokenizer& tokens,
-                              std::string_view what, std::size_t face) {
+                              bool normal, std::size_t face) {
   const std::int64_t count = static_cast<std::int64_t>(defined);
   const std::int64_t index = raw > 0 ? raw - 1 : count + raw;
   if (raw == 0 || index < 0 || index >= count)
-    tokens.fail("face {} refers to {} {} but only {} {}s are defined before it", face, what, raw,
-                defined, what);
+    tokens.fail("face {} refers to {} {} but only {} {} defined before it", face,
+                normal ? "normal" : "vertex", raw, defined,
+                normal ? (defined == 1 ? "normal is" : "normals are")
+                       : (defined == 1 ? "vertex is" : "vertices are"));
   return static_cast<std::uint32_t>(index);
 }
 
@@ -589,8 +597,8 @@ Mesh readObj(std::string_view text, const std::string& path) {
         const std::size_t slash = corner.find('/');
         const std::size_t slash2 =
             slash == std::string_view::npos ? slash : corner.find('/', slash + 1);
-        const std::uint32_t vertex = resolveObjIndex(
-            index(corner.substr(0, slash)), mesh.vertexCount(), tokens, "vertex", faceCount);
+        const std::uint32_t vertex = resolveObjIndex(index(corner.substr(0, slash)),
+                                                     mesh.vertexCount(), tokens, false, faceCount);
         corners.push_back(vertex);
         if (slash != std::string_view::npos && slash2 != slash + 1)
           index(corner.substr(slash + 1, slash2 - slash - 1));  // the texture coordinate
@@ -598,8 +606,8 @@ Mesh readObj(std::string_view text, const std::string& path) {
           normalsConsistent = false;
           continue;
         }
-        const std::uint32_t normal = resolveObjIndex(
-            index(corner.substr(slash2 + 1)), normals.size() / 3, tokens, "normal", faceCount);
+        const std::uint32_t normal = resolveObjIndex(index(corner.substr(slash2 + 1)),
+                                                     normals.size() / 3, tokens, true, faceCount);
         if (normalsConsistent) {
           normalOf.resize(mesh.vertexCount(), kNone);
           if (normalOf[vertex] == kNone) normalOf[vertex] = normal;
@@ -707,6 +715,13 @@ class PlyValues {
   Tokenizer& tokens_;
   std::optional<ByteReader> bytes_;
 };
+
+/// `value` rounded to float; beyond float's range, infinite (a plain cast would be undefined).
+float toFloat(double value) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  return value > kMax ? kInfinity : value < -kMax ? -kInfinity : static_cast<float>(value);
+}
 
 Mesh readPly(std::string_view data, const std::string& path) {
   Tokenizer tokens(data, path, '\0');
@@ -826,9 +841,9 @@ Mesh readPly(std::string_view data, const std::string& path) {
         appendFan(corners, mesh.indices);
       }
       if (isVertex) {
-        for (std::size_t k = 0; k < 3; ++k) mesh.positions.push_back(static_cast<float>(vertex[k]));
+        for (std::size_t k = 0; k < 3; ++k) mesh.positions.push_back(toFloat(vertex[k]));
         if (hasNormals)
-          for (std::size_t k = 3; k < 6; ++k) mesh.normals.push_back(static_cast<float>(vertex[k]));
+          for (std::size_t k = 3; k < 6; ++k) mesh.normals.push_back(toFloat(vertex[k]));
       }
     }
   }

@@ -1,8 +1,11 @@
 // Parsing, validation and writing of vertex-frame model files.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -28,10 +31,14 @@ const char* kComponents[3] = {"x", "y", "z"};
 /// Readable names of the four sides, for messages.
 const char* sideName(Side s) {
   switch (s) {
-    case Side::Alpha: return "P1-P2-P3";
-    case Side::Delta: return "P3-P4-P5";
-    case Side::Beta: return "P7-P6-P5";
-    default: return "P1-P8-P7";
+    case Side::Alpha:
+      return "P1-P2-P3";
+    case Side::Delta:
+      return "P3-P4-P5";
+    case Side::Beta:
+      return "P7-P6-P5";
+    default:
+      return "P1-P8-P7";
   }
 }
 
@@ -43,6 +50,111 @@ const char* typeName(const Json& j) {
   if (j.is_array()) return "an array";
   return "an object";
 }
+
+/// Where and why parsing stopped.
+struct ParseFailure {
+  std::string path;       ///< JSON path of the value being read ("$" at the top level)
+  std::string what;       ///< nlohmann's message
+  std::string token;      ///< the last token read
+  bool overflow = false;  ///< a number beyond the range of a double (out_of_range.406)
+};
+
+/// Builds the document like nlohmann's own parser, but knows the JSON path of the value
+/// being read, so that a syntax error or a number like 1e999 can be reported by its path.
+class PathTrackingBuilder {
+ public:
+  explicit PathTrackingBuilder(Json& root) : root_(root) {}
+  const ParseFailure& failure() const { return failure_; }
+
+  bool null() { return value(nullptr); }
+  bool boolean(bool b) { return value(b); }
+  bool number_integer(Json::number_integer_t x) { return value(x); }
+  bool number_unsigned(Json::number_unsigned_t x) { return value(x); }
+  bool number_float(Json::number_float_t x, const Json::string_t& /*text*/) { return value(x); }
+  bool string(Json::string_t& s) { return value(std::move(s)); }
+  bool binary(Json::binary_t& b) { return value(Json::binary(std::move(b))); }
+  bool start_object(std::size_t /*size*/) { return open(Json::object(), false); }
+  bool start_array(std::size_t /*size*/) { return open(Json::array(), true); }
+  bool key(Json::string_t& k) {
+    levels_.back().key = std::move(k);
+    levels_.back().haveKey = true;
+    return true;
+  }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+  bool parse_error(std::size_t /*position*/, const std::string& lastToken,
+                   const Json::exception& e) {
+    std::vector<std::string_view> steps;
+    for (const Level& l : levels_) steps.push_back(l.self);
+    std::string last;  // the value that was being read inside the innermost container
+    if (!levels_.empty()) {
+      const Level& in = levels_.back();
+      if (in.array)
+        last = fmt::format("[{}]", in.node->size());
+      else if (in.haveKey)
+        last = member(in.key);
+    }
+    failure_.path = fmt::format("${}{}", fmt::join(steps, ""), last);
+    failure_.what = e.what();
+    failure_.token = lastToken;
+    failure_.overflow = e.id == 406;
+    return false;
+  }
+
+ private:
+  struct Level {
+    Json* node;
+    bool array;
+    std::string self;  ///< this container's step in the path from its parent
+    std::string key;   ///< objects: the key whose value comes next
+    bool haveKey = false;
+  };
+
+  static std::string member(const std::string& key) {
+    const bool plain =
+        !key.empty() && (std::isalpha(static_cast<unsigned char>(key[0])) || key[0] == '_') &&
+        std::all_of(key.begin(), key.end(),
+                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    return plain ? fmt::format(".{}", key) : fmt::format("[{}]", Json(key).dump());
+  }
+
+  /// Places a value in the innermost container (or at the root) and returns it.
+  Json* place(Json&& v, std::string* step) {
+    if (levels_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Level& in = levels_.back();
+    if (in.array) {
+      if (step) *step = fmt::format("[{}]", in.node->size());
+      in.node->push_back(std::move(v));
+      return &in.node->back();
+    }
+    if (step) *step = member(in.key);
+    in.haveKey = false;
+    Json& slot = (*in.node)[in.key];
+    slot = std::move(v);
+    return &slot;
+  }
+  bool value(Json&& v) {
+    place(std::move(v), nullptr);
+    return true;
+  }
+  bool open(Json&& container, bool array) {
+    std::string step;
+    Json* node = place(std::move(container), &step);
+    levels_.push_back({node, array, std::move(step), {}, false});
+    return true;
+  }
+  bool close() {
+    levels_.pop_back();
+    return true;
+  }
+
+  Json& root_;
+  std::vector<Level> levels_;
+  ParseFailure failure_;
+};
 
 /// Walks a document, checking as it goes; every error names the file and the JSON path.
 class Reader {
@@ -80,9 +192,9 @@ class Reader {
   template <std::size_t N>
   std::array<double, N> numbers(const Json& j, const std::string& path) const {
     if (!j.is_array() || j.size() != N)
-      fail(path, j.is_array() ? fmt::format("expected {} numbers, found {}", N, j.size())
-                              : fmt::format("expected an array of {} numbers, found {}", N,
-                                            typeName(j)));
+      fail(path, j.is_array()
+                     ? fmt::format("expected {} numbers, found {}", N, j.size())
+                     : fmt::format("expected an array of {} numbers, found {}", N, typeName(j)));
     std::array<double, N> out{};
     for (std::size_t i = 0; i < N; ++i) out[i] = number(j[i], fmt::format("{}[{}]", path, i));
     return out;
@@ -93,16 +205,18 @@ class Reader {
     return {a[0], a[1], a[2]};
   }
 
-  std::uint32_t index(const Json& j, const std::string& path, std::size_t count,
-                      const char* what) const {
+  /// An index into a list of `count` things called `what` (plural `whats`).
+  std::uint32_t index(const Json& j, const std::string& path, std::size_t count, const char* what,
+                      const char* whats) const {
     if (!j.is_number_integer())
       fail(path, fmt::format("expected an integer {} index, found {}", what,
                              j.is_number() ? "a fractional number" : typeName(j)));
-    const auto i = j.get<std::int64_t>();
-    if (i < 0 || static_cast<std::uint64_t>(i) >= count)
-      fail(path, fmt::format("{} index {} is out of range (the model has {} {}s, indices 0 to {})",
-                             what, i, count, what, count == 0 ? 0 : count - 1));
-    return static_cast<std::uint32_t>(i);
+    // nlohmann keeps non-negative integers unsigned: read them so (2^64 - 1 is not -1).
+    if (!j.is_number_unsigned() || j.get<std::uint64_t>() >= count)
+      fail(path,
+           fmt::format("{} index {} is out of range (the model has {} {}, indices 0 to {})", what,
+                       j.dump(), count, count == 1 ? what : whats, count == 0 ? 0 : count - 1));
+    return static_cast<std::uint32_t>(j.get<std::uint64_t>());
   }
 
   Region region(const Json& j, const std::string& path) const {
@@ -110,8 +224,10 @@ class Reader {
     for (int i = 0; i < 4; ++i)
       if (r[i] < 0.0 || r[i] > 1.0)
         fail(path, fmt::format("region bounds must lie in [0, 1], found {}", r[i]));
-    if (!(r[0] < r[1])) fail(path, fmt::format("empty or inverted region: u0 = {} is not below u1 = {}", r[0], r[1]));
-    if (!(r[2] < r[3])) fail(path, fmt::format("empty or inverted region: v0 = {} is not below v1 = {}", r[2], r[3]));
+    if (!(r[0] < r[1]))
+      fail(path, fmt::format("empty or inverted region: u0 = {} is not below u1 = {}", r[0], r[1]));
+    if (!(r[2] < r[3]))
+      fail(path, fmt::format("empty or inverted region: v0 = {} is not below v1 = {}", r[2], r[3]));
     return {r[0], r[1], r[2], r[3]};
   }
 
@@ -140,24 +256,30 @@ class Reader {
 VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string& source) {
   Reader rd(source);
   Json doc;
-  try {
-    doc = Json::parse(text.begin(), text.end());
-  } catch (const Json::parse_error& e) {
+  PathTrackingBuilder builder(doc);
+  if (!Json::sax_parse(text.begin(), text.end(), &builder)) {
+    const ParseFailure& failure = builder.failure();
+    if (failure.overflow)  // nlohmann reports a number beyond a double (1e999) as out_of_range.406
+      rd.fail(failure.path, fmt::format("number is not finite ({} is beyond the range of a double)",
+                                        failure.token));
     // nlohmann's text reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
-    std::string what = e.what();
-    const auto at = what.find("parse error");
-    rd.fail("", fmt::format("malformed JSON: {}", at == std::string::npos ? what : what.substr(at)));
+    const auto at = failure.what.find("parse error");
+    rd.fail(failure.path,
+            fmt::format("malformed JSON: {}",
+                        at == std::string::npos ? failure.what : failure.what.substr(at)));
   }
   rd.expectObject(doc, "$");
   const Json& type = rd.member(doc, "$", "type");
-  if (!type.is_string()) rd.fail("$.type", fmt::format("expected a string, found {}", typeName(type)));
+  if (!type.is_string())
+    rd.fail("$.type", fmt::format("expected a string, found {}", typeName(type)));
   if (type.get<std::string>() != "vertex-frames")
     rd.fail("$.type", fmt::format("unknown model type \"{}\" (this reader takes \"vertex-frames\")",
                                   type.get<std::string>()));
 
   VertexFrameModel model;
   if (auto it = doc.find("name"); it != doc.end()) {
-    if (!it->is_string()) rd.fail("$.name", fmt::format("expected a string, found {}", typeName(*it)));
+    if (!it->is_string())
+      rd.fail("$.name", fmt::format("expected a string, found {}", typeName(*it)));
     model.name = it->get<std::string>();
   }
 
@@ -178,12 +300,12 @@ VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string&
     const Json& fv = rd.member(jf, path, "vertices");
     if (!fv.is_array() || fv.size() != 8)
       rd.fail(path + ".vertices",
-              fv.is_array() ? fmt::format("a frame has 8 vertices (P1..P8), found {}", fv.size())
-                            : fmt::format("expected an array of 8 vertex indices, found {}",
-                                          typeName(fv)));
+              fv.is_array()
+                  ? fmt::format("a frame has 8 vertices (P1..P8), found {}", fv.size())
+                  : fmt::format("expected an array of 8 vertex indices, found {}", typeName(fv)));
     for (int i = 0; i < 8; ++i)
       f.vertices[i] = rd.index(fv[i], fmt::format("{}.vertices[{}]", path, i),
-                               model.vertices.size(), "vertex");
+                               model.vertices.size(), "vertex", "vertices");
     if (auto it = jf.find("a1"); it != jf.end()) f.a1 = rd.vec3(*it, path + ".a1");
     if (auto it = jf.find("a2"); it != jf.end()) f.a2 = rd.vec3(*it, path + ".a2");
     if (auto it = jf.find("forces"); it != jf.end()) {
@@ -215,7 +337,7 @@ VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string&
       std::set<std::uint32_t> seen;
       for (std::size_t j = 0; j < list.size(); ++j) {
         const std::string ip = fmt::format("{}.frames[{}]", fp, j);
-        const std::uint32_t k = rd.index(list[j], ip, model.frames.size(), "frame");
+        const std::uint32_t k = rd.index(list[j], ip, model.frames.size(), "frame", "frames");
         if (!seen.insert(k).second) rd.fail(ip, fmt::format("frame {} is listed twice", k));
         rd.checkSolvable(model.frames[k], force.f0, Region{}, fp, k);
         force.frames.push_back(k);
@@ -255,7 +377,8 @@ std::string serializeVertexFrameModel(const VertexFrameModel& model) {
   if (!model.name.empty()) out += fmt::format("  \"name\": {},\n", Json(model.name).dump());
   out += "  \"vertices\": [\n";
   for (std::size_t i = 0; i < model.vertices.size(); ++i)
-    out += fmt::format("    {}{}\n", vec(model.vertices[i]), i + 1 < model.vertices.size() ? "," : "");
+    out +=
+        fmt::format("    {}{}\n", vec(model.vertices[i]), i + 1 < model.vertices.size() ? "," : "");
   out += "  ],\n  \"frames\": [\n";
   for (std::size_t k = 0; k < model.frames.size(); ++k) {
     const Frame& f = model.frames[k];

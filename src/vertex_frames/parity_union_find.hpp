@@ -43,7 +43,8 @@ class ParityUnionFind {
   /// the set as conflicting (its only consistent value is 0).
   void unite(std::uint32_t a, std::uint32_t b, std::int8_t rel) {
     const Root ra = find(a), rb = find(b);
-    const auto needed = static_cast<std::int8_t>(rb.sign * rel * ra.sign);  // value(rb) = needed·value(ra)
+    const auto needed =
+        static_cast<std::int8_t>(rb.sign * rel * ra.sign);  // value(rb) = needed·value(ra)
     if (ra.root == rb.root) {
       if (needed != 1) conflict_[ra.root] = 1;
       return;
@@ -52,7 +53,8 @@ class ParityUnionFind {
     if (rank_[top] < rank_[below]) std::swap(top, below);
     if (rank_[top] == rank_[below]) ++rank_[top];
     parent_[below] = top;
-    sign_[below] = needed;  // symmetric: value(rb) = needed·value(ra) ⇔ value(ra) = needed·value(rb)
+    sign_[below] =
+        needed;  // symmetric: value(rb) = needed·value(ra) ⇔ value(ra) = needed·value(rb)
     conflict_[top] = static_cast<std::uint8_t>(conflict_[top] | conflict_[below]);
   }
 

@@ -151,15 +151,16 @@ SurfacePoint VertexFramePatch::evaluate(double u, double v) const {
 }
 
 VertexFrameSurface solve(const VertexFrameModel& model, const SolveOptions& options) {
-  return solve(model, buildTopology(model), options);
+  return solve(model, std::make_shared<const FrameTopology>(buildTopology(model)), options);
 }
 
-VertexFrameSurface solve(const VertexFrameModel& model, FrameTopology topology,
+VertexFrameSurface solve(const VertexFrameModel& model,
+                         std::shared_ptr<const FrameTopology> topology,
                          const SolveOptions& options) {
   const auto nFrames = static_cast<std::uint32_t>(model.frames.size());
   VertexFrameSurface out;
   out.topology = std::move(topology);
-  const FrameTopology& topo = out.topology;
+  const FrameTopology& topo = *out.topology;
 
   std::vector<CrossTerms> cross(nFrames);
   for (std::uint32_t k = 0; k < nFrames; ++k) cross[k] = crossTerms(framePoints(model, k));
@@ -209,7 +210,7 @@ VertexFrameSurface solve(const VertexFrameModel& model, FrameTopology topology,
         queue.pop();
         visit(k);
         for (std::uint32_t e : topo.edgeOf[k])
-          for (const FrameSide& fs : topo.edges[e].sides)
+          for (const FrameSide& fs : topo.sides(e))
             if (!seen[fs.frame]) {
               seen[fs.frame] = 1;
               queue.push(fs.frame);
@@ -223,7 +224,8 @@ VertexFrameSurface solve(const VertexFrameModel& model, FrameTopology topology,
         "the PDE does not fix their cubic coefficient there, so it is taken as 0",
         freeStrips));
   if (!topo.orientable)
-    out.notes.push_back("the surface is not orientable (a Möbius-like loop): normals flip somewhere");
+    out.notes.push_back(
+        "the surface is not orientable (a Möbius-like loop): normals flip somewhere");
 
   out.patches.resize(nFrames);
   auto forces = allForceTerms(model);

@@ -3,11 +3,13 @@
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
+#include <sys/resource.h>
 #include <tiny_gltf.h>
 
 #include <array>
 #include <bit>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -352,6 +354,27 @@ TEST(MeshIoWrite, InvalidMeshThrowsAndLeavesNothing) {
   EXPECT_TRUE(dir.entries().empty());
 }
 
+TEST(MeshIoWrite, FailedWriteThrowsAndLeavesNothing) {
+  // A file size limit makes write(2) fail with EFBIG part way through.
+  TempDir dir;
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  const auto savedHandler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit limited = saved;
+  limited.rlim_cur = 100000;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limited), 0);
+  std::vector<std::string> messages;
+  for (const std::string name : {"big.obj", "big.ply", "big.stl", "big.glb", "big.off"})
+    messages.push_back(errorOf([&] { writeMesh(makeCubeSphere(40), dir.file(name)); }));
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, savedHandler);
+  for (const std::string& message : messages) {
+    EXPECT_TRUE(contains(message, "big."));
+    EXPECT_TRUE(contains(message, "File too large"));
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
 TEST(MeshIoWrite, RenameOntoADirectoryFailsAndRemovesTheTemporary) {
   TempDir dir;
   fs::create_directory(dir.file("taken.obj"));
@@ -368,6 +391,8 @@ TEST(MeshIoRead, MissingFileNamesThePath) {
   const std::string message = errorOf([&] { readMesh(dir.file("nothing.ply")); });
   EXPECT_TRUE(contains(message, "nothing.ply"));
   EXPECT_TRUE(contains(message, "No such file or directory"));
+  fs::create_directory(dir.file("folder.obj"));
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("folder.obj")); }), "folder.obj: "));
 }
 
 TEST(MeshIoRead, TruncatedBinaryPlyNamesTheFile) {

@@ -14,9 +14,9 @@
 namespace pdesurf::testing {
 
 struct EdgeStats {
-  std::size_t edges = 0;              ///< undirected edges
-  std::size_t boundaryEdges = 0;      ///< used by one triangle
-  std::size_t nonManifoldEdges = 0;   ///< used by three or more
+  std::size_t edges = 0;                        ///< undirected edges
+  std::size_t boundaryEdges = 0;                ///< used by one triangle
+  std::size_t nonManifoldEdges = 0;             ///< used by three or more
   std::size_t inconsistentlyOrientedEdges = 0;  ///< two triangles run it the same way
 };
 
@@ -54,14 +54,17 @@ inline std::size_t duplicatePositions(const Mesh& mesh) {
 inline double minCornerNormalAgreement(const Mesh& mesh) {
   double worst = 1.0;
   auto pos = [&](std::uint32_t v) {
-    return Eigen::Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+    return Eigen::Vector3d(mesh.positions[3 * v], mesh.positions[3 * v + 1],
+                           mesh.positions[3 * v + 2]);
   };
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-    const std::uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1], c = mesh.indices[3 * t + 2];
+    const std::uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1],
+                        c = mesh.indices[3 * t + 2];
     const Eigen::Vector3d fn = (pos(b) - pos(a)).cross(pos(c) - pos(a));
     if (fn.norm() < 1e-12) continue;
     for (std::uint32_t v : {a, b, c}) {
-      const Eigen::Vector3d n(mesh.normals[3 * v], mesh.normals[3 * v + 1], mesh.normals[3 * v + 2]);
+      const Eigen::Vector3d n(mesh.normals[3 * v], mesh.normals[3 * v + 1],
+                              mesh.normals[3 * v + 2]);
       worst = std::min(worst, fn.normalized().dot(n));
     }
   }

@@ -10,8 +10,8 @@ namespace pdesurf::testing {
 
 /// Re-lists a frame's ring of 8 slots in one of the 8 symmetries of the square:
 /// `rotation` quarter turns (0..3), then a mirror (which swaps u and v) if `mirror`.
-inline std::array<std::uint32_t, 8> reorient(const std::array<std::uint32_t, 8>& ring,
-                                             int rotation, bool mirror) {
+inline std::array<std::uint32_t, 8> reorient(const std::array<std::uint32_t, 8>& ring, int rotation,
+                                             bool mirror) {
   std::array<std::uint32_t, 8> out{};
   for (int i = 0; i < 8; ++i) {
     const int from = mirror ? (8 - i) % 8 : i;
@@ -21,11 +21,11 @@ inline std::array<std::uint32_t, 8> reorient(const std::array<std::uint32_t, 8>&
 }
 
 struct LatticeOptions {
-  int rows = 3, cols = 3;     ///< frames along v and along u
-  bool closedU = false;       ///< wrap the columns (a cylinder)
-  bool closedV = false;       ///< wrap the rows as well (a torus)
+  int rows = 3, cols = 3;  ///< frames along v and along u
+  bool closedU = false;    ///< wrap the columns (a cylinder)
+  bool closedV = false;    ///< wrap the rows as well (a torus)
   bool randomOrientation = false;
-  double noise = 0.0;         ///< random displacement of the vertices
+  double noise = 0.0;             ///< random displacement of the vertices
   bool randomParameters = false;  ///< random a1, a2 per frame, positive
 };
 
@@ -53,9 +53,7 @@ inline VertexFrameModel latticeModel(const LatticeOptions& o, std::mt19937& rng)
       p += o.noise * Vec3(unit(rng), unit(rng), unit(rng));
       m.vertices.push_back(p);
     }
-  auto at = [&](int i, int j) {
-    return static_cast<std::uint32_t>((j % nv) * nu + (i % nu));
-  };
+  auto at = [&](int i, int j) { return static_cast<std::uint32_t>((j % nv) * nu + (i % nu)); };
   std::uniform_int_distribution<int> rot(0, 3), coin(0, 1);
   std::uniform_real_distribution<double> param(0.3, 3.0);
   for (int r = 0; r < o.rows; ++r)
@@ -80,13 +78,12 @@ inline VertexFrameModel branchModel(std::mt19937& rng, bool randomOrientation) {
   std::uniform_int_distribution<int> rot(0, 3), coin(0, 1);
   VertexFrameModel m;
   // The shared edge: vertices 0, 1, 2 along x.
-  m.vertices = {{0, 0, 0},  {1, 0, 0},  {2, 0, 0},                   // shared edge
-                {2, 1, 0},  {2, 2, 0.2}, {1, 2, 0.1}, {0, 2, 0}, {0, 1, 0},  // sheet +y
-                {2, -1, 0}, {2, -2, 0.1}, {1, -2, 0}, {0, -2, 0.2}, {0, -1, 0},  // sheet -y
-                {2, 0, 1},  {2, 0.1, 2}, {1, 0, 2.2}, {0, 0.1, 2}, {0, 0, 1}};   // fin +z
-  std::vector<std::array<std::uint32_t, 8>> rings = {{0, 1, 2, 3, 4, 5, 6, 7},
-                                                     {2, 1, 0, 12, 11, 10, 9, 8},
-                                                     {0, 1, 2, 13, 14, 15, 16, 17}};
+  m.vertices = {{0, 0, 0},  {1, 0, 0},    {2, 0, 0},                              // shared edge
+                {2, 1, 0},  {2, 2, 0.2},  {1, 2, 0.1}, {0, 2, 0},    {0, 1, 0},   // sheet +y
+                {2, -1, 0}, {2, -2, 0.1}, {1, -2, 0},  {0, -2, 0.2}, {0, -1, 0},  // sheet -y
+                {2, 0, 1},  {2, 0.1, 2},  {1, 0, 2.2}, {0, 0.1, 2},  {0, 0, 1}};  // fin +z
+  std::vector<std::array<std::uint32_t, 8>> rings = {
+      {0, 1, 2, 3, 4, 5, 6, 7}, {2, 1, 0, 12, 11, 10, 9, 8}, {0, 1, 2, 13, 14, 15, 16, 17}};
   for (auto& r : rings) {
     Frame f;
     f.vertices = randomOrientation ? reorient(r, rot(rng), coin(rng) == 1) : r;
@@ -116,7 +113,8 @@ inline VertexFrameModel poleModel(int sectors, bool randomOrientation, std::mt19
   for (int s = 0; s < sectors; ++s) {
     const int i = 2 * s;
     // P1..P3 collapsed at the pole, P3→P5 radial, P5 P6 P7 on the outer ring, P7→P1 radial.
-    std::array<std::uint32_t, 8> ring = {0, 0, 0, mid(i + 2), out(i + 2), out(i + 1), out(i), mid(i)};
+    std::array<std::uint32_t, 8> ring = {0,          0,          0,      mid(i + 2),
+                                         out(i + 2), out(i + 1), out(i), mid(i)};
     Frame f;
     f.vertices = randomOrientation ? reorient(ring, rot(rng), coin(rng) == 1) : ring;
     m.frames.push_back(f);

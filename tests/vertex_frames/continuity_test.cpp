@@ -10,8 +10,8 @@
 namespace pdesurf {
 namespace {
 
-using testing::LatticeOptions;
 using testing::latticeModel;
+using testing::LatticeOptions;
 
 double relativeGap(const VertexFrameSurface& s) {
   return measureC0Gap(s).maxGap / surfaceBounds(s).diagonal();
@@ -85,11 +85,12 @@ TEST(Continuity, ExactOnABranchOfThreeFramesSharingAnEdge) {
     const FrameTopology t = buildTopology(m);
     // One edge is run by all three frames, and it ties their cubics into one strip.
     std::size_t triple = 0;
-    for (const ModelEdge& e : t.edges)
-      if (e.sides.size() == 3) {
+    for (std::uint32_t e = 0; e < t.edges.size(); ++e)
+      if (t.sides(e).size() == 3) {
         ++triple;
-        const std::uint32_t strip = t.strip[e.sides[0].frame][sideDirection(e.sides[0].side)];
-        for (const FrameSide& fs : e.sides)
+        const FrameSide first = t.sides(e)[0];
+        const std::uint32_t strip = t.strip[first.frame][sideDirection(first.side)];
+        for (const FrameSide& fs : t.sides(e))
           EXPECT_EQ(t.strip[fs.frame][sideDirection(fs.side)], strip);
       }
     EXPECT_EQ(triple, 1u);
@@ -105,7 +106,7 @@ TEST(Continuity, CollapsedEdgesStayAPoint) {
     const VertexFrameSurface s = solve(m);
     for (std::uint32_t k = 0; k < m.frames.size(); ++k)
       for (int side = 0; side < 4; ++side) {
-        const ModelEdge& e = s.topology.edges[s.topology.edgeOf[k][side]];
+        const ModelEdge& e = s.topology->edges[s.topology->edgeOf[k][side]];
         if (!e.collapsed()) continue;
         for (double t : {0.1, 0.25, 0.5, 0.9}) {
           const auto [u, v] = sideParam(static_cast<Side>(side), t);
@@ -161,7 +162,7 @@ TEST(GlobalSolver, IsAMinimumOfTheSummedResidual) {
     const VertexFrameModel m = latticeModel(o, rng);
     const VertexFrameSurface s = solve(m);
     const double best = summedResidual(m, s.patches);
-    const FrameTopology& t = s.topology;
+    const FrameTopology& t = *s.topology;
     for (std::uint32_t strip = 0; strip < t.stripCount; ++strip)
       for (int comp = 0; comp < 3; ++comp)
         for (double delta : {-1e-3, 1e-3}) {

@@ -13,8 +13,8 @@ namespace pdesurf {
 namespace {
 
 /// Parameters of the 8 frame vertices (seed §3.2).
-constexpr double kVertexParams[8][2] = {{0, 0},   {0.5, 0}, {1, 0},   {1, 0.5},
-                                        {1, 1},   {0.5, 1}, {0, 1},   {0, 0.5}};
+constexpr double kVertexParams[8][2] = {{0, 0}, {0.5, 0}, {1, 0}, {1, 0.5},
+                                        {1, 1}, {0.5, 1}, {0, 1}, {0, 0.5}};
 
 /// Closed-form coefficients are sums of a few vertices with weights ≤ 5, so a patch
 /// reproduces them to a few ulps of the coordinates' size (≈ 1 here).
@@ -61,8 +61,8 @@ TEST(Patch, EdgeIsQuadraticThroughItsVerticesPlusCubicTimesT_THalf_TMinus1) {
 
 /// min over (C3, C6) of Σ_grid (a1 S_uu + a2 S_vv)², solved as a dense least-squares
 /// problem: the residual is affine in (C3, C6), so build it column by column.
-std::array<double, 2> bruteForceCubics(const std::array<Vec3, 8>& p, double a1, double a2,
-                                       int comp, int m, int n) {
+std::array<double, 2> bruteForceCubics(const std::array<Vec3, 8>& p, double a1, double a2, int comp,
+                                       int m, int n) {
   auto residuals = [&](double c3, double c6) {
     VertexFramePatch patch;
     patch.c = patchCoefficients(p, Vec3::Constant(c3), Vec3::Constant(c6));
@@ -161,9 +161,11 @@ TEST(Patch, ParticularSolutionSatisfiesThePdeAndVanishesOnItsRegionBorder) {
       for (double s2 : {0.3, 0.6}) {
         const double u = r.u0 + s1 * (r.u1 - r.u0), v = r.v0 + s2 * (r.v1 - r.v0);
         const Vec3 suu =
-            (patch.position(u + h, v) - 2 * patch.position(u, v) + patch.position(u - h, v)) / (h * h);
+            (patch.position(u + h, v) - 2 * patch.position(u, v) + patch.position(u - h, v)) /
+            (h * h);
         const Vec3 svv =
-            (patch.position(u, v + h) - 2 * patch.position(u, v) + patch.position(u, v - h)) / (h * h);
+            (patch.position(u, v + h) - 2 * patch.position(u, v) + patch.position(u, v - h)) /
+            (h * h);
         const Vec3 lhs = (fr.a1.array() * suu.array() + fr.a2.array() * svv.array()).matrix();
         const Vec3 rhs = f0 * std::sin(M_PI * s1) * std::sin(M_PI * s2);
         EXPECT_LT((lhs - rhs).norm(), kPdeTol * (1 + f0.norm())) << "trial " << trial;

@@ -12,8 +12,8 @@
 namespace pdesurf {
 namespace {
 
-using testing::LatticeOptions;
 using testing::latticeModel;
+using testing::LatticeOptions;
 
 TEST(Tessellate, ClosedTorusIsWatertightOrientedAndHasEulerCharacteristicZero) {
   std::mt19937 rng(21);
@@ -58,7 +58,8 @@ TEST(Tessellate, NormalsAreUnitAndFaceTheWayTheTrianglesDo) {
   // And on a torus the normals point away from the core circle (outward), or all inward.
   double outward = 0, inward = 0;
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-    const Eigen::Vector3d p(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
+    const Eigen::Vector3d p(mesh.positions[3 * v], mesh.positions[3 * v + 1],
+                            mesh.positions[3 * v + 2]);
     const Eigen::Vector3d core = 3.0 * Eigen::Vector3d(p.x(), p.y(), 0).normalized();
     const Eigen::Vector3d n(mesh.normals[3 * v], mesh.normals[3 * v + 1], mesh.normals[3 * v + 2]);
     ((p - core).dot(n) > 0 ? outward : inward) += 1;

@@ -1,0 +1,113 @@
+// Benchmarks of the vertex-frame engine: solving large models and tessellating them.
+// Results and the command that produced them: docs/performance.md.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+
+#include "pdesurf/vertex_frames.hpp"
+
+namespace {
+
+using namespace pdesurf;
+
+/// A wavy sheet of side × side frames over a shared lattice, frames in random orientations,
+/// a force on every tenth frame: what a large, real model exercises.
+VertexFrameModel sheet(int side) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> rot(0, 3), coin(0, 1);
+  const int n = 2 * side + 1;
+  VertexFrameModel m;
+  m.vertices.reserve(static_cast<std::size_t>(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      m.vertices.push_back({0.5 * i, 0.5 * j, 0.3 * std::sin(0.7 * i) * std::cos(0.5 * j)});
+  auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * n + i); };
+  for (int r = 0; r < side; ++r)
+    for (int c = 0; c < side; ++c) {
+      const int i = 2 * c, j = 2 * r;
+      const std::array<std::uint32_t, 8> ring = {
+          at(i, j),         at(i + 1, j),     at(i + 2, j), at(i + 2, j + 1),
+          at(i + 2, j + 2), at(i + 1, j + 2), at(i, j + 2), at(i, j + 1)};
+      const int turn = rot(rng);
+      const bool mirror = coin(rng) == 1;
+      Frame f;
+      for (int s = 0; s < 8; ++s) f.vertices[s] = ring[((mirror ? (8 - s) % 8 : s) + 2 * turn) % 8];
+      if ((r * side + c) % 10 == 0) f.forces.push_back({Vec3(0, 0, 1), Region{0.2, 0.8, 0.2, 0.8}});
+      m.frames.push_back(f);
+    }
+  return m;
+}
+
+int sideFor(std::int64_t frames) {
+  return static_cast<int>(std::lround(std::sqrt(double(frames))));
+}
+
+/// The whole solve: topology (strips, edges, orientation) and every patch's coefficients.
+void BM_Solve(benchmark::State& state) {
+  const VertexFrameModel m = sheet(sideFor(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(solve(m));
+  state.counters["frames"] = static_cast<double>(m.frames.size());
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(m.frames.size()));
+}
+BENCHMARK(BM_Solve)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+/// Re-solve with a known topology: the studio's path while a vertex is dragged.
+void BM_SolveKnownTopology(benchmark::State& state) {
+  const VertexFrameModel m = sheet(sideFor(state.range(0)));
+  const auto topo = std::make_shared<const FrameTopology>(buildTopology(m));
+  for (auto _ : state) benchmark::DoNotOptimize(solve(m, topo));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(m.frames.size()));
+}
+BENCHMARK(BM_SolveKnownTopology)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+/// Tessellation with normals into a mesh whose buffers are reused; items = vertices.
+void BM_Tessellate(benchmark::State& state) {
+  const VertexFrameSurface s = solve(sheet(32));  // 1,024 frames
+  const auto res = static_cast<std::uint32_t>(state.range(0));
+  Mesh mesh;
+  for (auto _ : state) {
+    tessellate(s, {res}, mesh);
+    benchmark::DoNotOptimize(mesh.positions.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = static_cast<double>(mesh.vertexCount());
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.vertexCount()));
+}
+BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+
+/// Baseline: write the same number of vertices (position and normal, 6 floats each) and
+/// the same triangle indices to reused buffers, computing nothing.
+void BM_WriteVerticesBaseline(benchmark::State& state) {
+  const VertexFrameSurface s = solve(sheet(32));
+  Mesh reference;
+  tessellate(s, {static_cast<std::uint32_t>(state.range(0))}, reference);
+  const std::size_t nv = reference.vertexCount(), nt = reference.triangleCount();
+  Mesh mesh = reference;
+  for (auto _ : state) {
+    float* p = mesh.positions.data();
+    float* n = mesh.normals.data();
+    for (std::size_t v = 0; v < nv; ++v) {
+      const auto x = static_cast<float>(v);
+      p[3 * v] = x;
+      p[3 * v + 1] = x + 1.0f;
+      p[3 * v + 2] = x + 2.0f;
+      n[3 * v] = 0.0f;
+      n[3 * v + 1] = 0.0f;
+      n[3 * v + 2] = 1.0f;
+    }
+    std::uint32_t* idx = mesh.indices.data();
+    for (std::size_t t = 0; t < 3 * nt; ++t) idx[t] = static_cast<std::uint32_t>(t);
+    std::uint32_t* pid = mesh.patchIds.data();
+    for (std::size_t t = 0; t < nt; ++t) pid[t] = static_cast<std::uint32_t>(t >> 9);
+    benchmark::DoNotOptimize(mesh.positions.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = static_cast<double>(nv);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
+}
+BENCHMARK(BM_WriteVerticesBaseline)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,105 @@
+// Every model in examples/ is built and checked: a new example is tested for free.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "pdesurf/analysis.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model_io.hpp"
+#include "pdesurf/vertex_frames.hpp"
+#include "support/mesh_checks.hpp"
+
+namespace pdesurf {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> exampleFiles() {
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(fs::path(PDESURF_SOURCE_DIR) / "examples"))
+    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+class Example : public ::testing::TestWithParam<std::string> {};
+
+constexpr double kVertexParams[8][2] = {{0, 0}, {0.5, 0}, {1, 0}, {1, 0.5},
+                                        {1, 1}, {0.5, 1}, {0, 1}, {0, 0.5}};
+
+TEST_P(Example, InterpolatesItsVerticesAndIsExactlyC0WithBothSolvers) {
+  const VertexFrameModel m = loadVertexFrameModel(GetParam());
+  for (Solver solver : {Solver::Global, Solver::Local}) {
+    const VertexFrameSurface s = solve(m, {solver, 0});
+    const double diag = surfaceBounds(s).diagonal();
+    ASSERT_GT(diag, 0.0);
+    EXPECT_LT(measureC0Gap(s).maxGap / diag, kC0RelativeTolerance);
+    double worst = 0;
+    for (std::size_t k = 0; k < m.frames.size(); ++k)
+      for (int i = 0; i < 8; ++i) {
+        const Vec3 p = s.patches[k].position(kVertexParams[i][0], kVertexParams[i][1]);
+        worst = std::max(worst, (p - m.vertices[m.frames[k].vertices[i]]).norm());
+      }
+    EXPECT_LT(worst / diag, kC0RelativeTolerance) << "vertex interpolation";
+  }
+}
+
+TEST_P(Example, TessellatesToAWatertightOrientedMeshThatSurvivesEveryFormat) {
+  const VertexFrameModel m = loadVertexFrameModel(GetParam());
+  const VertexFrameSurface s = solve(m);
+  const std::uint32_t n = 9;
+  const Mesh mesh = tessellate(s, {n});
+  const auto stats = testing::edgeStats(mesh);
+  // Open edges of the mesh are exactly the model's unshared, uncollapsed edges.
+  std::size_t openModelEdges = 0;
+  for (std::uint32_t e = 0; e < s.topology->edges.size(); ++e)
+    if (s.topology->sides(e).size() == 1 && !s.topology->edges[e].collapsed()) ++openModelEdges;
+  EXPECT_EQ(stats.boundaryEdges, openModelEdges * (n - 1));
+  EXPECT_EQ(stats.inconsistentlyOrientedEdges, 0u);
+  EXPECT_EQ(testing::duplicatePositions(mesh), 0u);
+  EXPECT_GT(testing::minCornerNormalAgreement(mesh), -0.5);  // no normal points backwards
+
+  const fs::path dir =
+      fs::temp_directory_path() / ("pdesurf-example-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* ext : {".obj", ".ply", ".stl", ".glb"}) {
+    const std::string path = (dir / (fs::path(GetParam()).stem().string() + ext)).string();
+    writeMesh(mesh, path);
+    const Mesh back = readMesh(path);
+    EXPECT_EQ(back.vertexCount(), mesh.vertexCount()) << ext;
+    EXPECT_EQ(back.triangleCount(), mesh.triangleCount()) << ext;
+  }
+  fs::remove_all(dir);
+}
+
+TEST_P(Example, RoundTripsThroughTheModelWriter) {
+  const VertexFrameModel m = loadVertexFrameModel(GetParam());
+  const VertexFrameModel back = parseVertexFrameModel(serializeVertexFrameModel(m), "round-trip");
+  ASSERT_EQ(back.vertices.size(), m.vertices.size());
+  ASSERT_EQ(back.frames.size(), m.frames.size());
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) EXPECT_EQ(back.vertices[i], m.vertices[i]);
+  EXPECT_EQ(storageBytes(back), storageBytes(m));
+}
+
+INSTANTIATE_TEST_SUITE_P(Examples, Example, ::testing::ValuesIn(exampleFiles()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = fs::path(info.param).stem().string();
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+TEST(Examples, AreAllThere) {
+  // The list: a mug with a handle, a basket with a strap, a vase, a hat, a dress,
+  // a single-frame sculpting demo.
+  const auto files = exampleFiles();
+  for (const char* name : {"mug", "basket", "vase", "hat", "dress", "sculpt"}) {
+    const bool found = std::any_of(files.begin(), files.end(), [&](const std::string& f) {
+      return fs::path(f).stem() == name;
+    });
+    EXPECT_TRUE(found) << name;
+  }
+}
+
+}  // namespace
+}  // namespace pdesurf
