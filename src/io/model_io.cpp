@@ -233,17 +233,20 @@ class Reader {
 
   /// A force must have a particular solution: a1/Lu² + a2/Lv² ≠ 0 where f0 ≠ 0.
   void checkSolvable(const Frame& f, const Vec3& f0, const Region& r, const std::string& path,
-                     std::uint32_t frame) const {
+                     std::uint32_t frame, bool wholeFrame) const {
     const double lu = r.u1 - r.u0, lv = r.v1 - r.v0;
     for (int c = 0; c < 3; ++c) {
       if (f0[c] == 0.0) continue;
       const double den = f.a1[c] / (lu * lu) + f.a2[c] / (lv * lv);
       if (den == 0.0 || !std::isfinite(den))
-        fail(path, fmt::format("on frame {}, a1.{}/Lu² + a2.{}/Lv² is 0 (a1.{} = {}, a2.{} = {}, "
+        fail(path, fmt::format("on frame {}, a1.{}/Lu² + a2.{}/Lv² is {} (a1.{} = {}, a2.{} = {}, "
                                "Lu = {}, Lv = {}), so the force component f0.{} = {} has no "
-                               "solution: change a1, a2 or the region",
-                               frame, kComponents[c], kComponents[c], kComponents[c], f.a1[c],
-                               kComponents[c], f.a2[c], lu, lv, kComponents[c], f0[c]));
+                               "solution: change {}",
+                               frame, kComponents[c], kComponents[c],
+                               den == 0.0 ? "0" : "not finite", kComponents[c], f.a1[c],
+                               kComponents[c], f.a2[c], lu, lv, kComponents[c], f0[c],
+                               wholeFrame ? fmt::format("a1 or a2 of frames[{}]", frame)
+                                          : std::string("a1, a2 or the region")));
     }
   }
 
@@ -318,7 +321,7 @@ VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string&
         force.f0 = rd.vec3(rd.member(jforce, fp, "f0"), fp + ".f0");
         if (auto r = jforce.find("region"); r != jforce.end())
           force.region = rd.region(*r, fp + ".region");
-        rd.checkSolvable(f, force.f0, force.region, fp, static_cast<std::uint32_t>(k));
+        rd.checkSolvable(f, force.f0, force.region, fp, static_cast<std::uint32_t>(k), false);
         f.forces.push_back(force);
       }
     }
@@ -339,7 +342,7 @@ VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string&
         const std::string ip = fmt::format("{}.frames[{}]", fp, j);
         const std::uint32_t k = rd.index(list[j], ip, model.frames.size(), "frame", "frames");
         if (!seen.insert(k).second) rd.fail(ip, fmt::format("frame {} is listed twice", k));
-        rd.checkSolvable(model.frames[k], force.f0, Region{}, fp, k);
+        rd.checkSolvable(model.frames[k], force.f0, Region{}, fp, k, true);
         force.frames.push_back(k);
       }
       model.forces.push_back(std::move(force));

@@ -5,9 +5,10 @@
 // side), then each patch's interior grid. Boundary vertices therefore come first, and
 // their normals are accumulated over the patches that meet there, then normalised.
 //
-// Speed: a patch on a grid is a 4×4 tensor product per component (plus force terms that
-// are products of per-u and per-v tables), so each row j folds the v-powers into four
-// coefficients and the inner loop over u is a few fused multiply-adds per component.
+// Speed: a patch's whole n×n grid is evaluated in one fused, vectorised loop (position,
+// both derivatives, the unit normal, written as floats); force terms, products of per-u
+// and per-v tables, are added through precomputed grids only for patches that have them.
+// Interior rows of a patch are contiguous in the mesh and are copied there whole.
 #include <algorithm>
 #include <cmath>
 
@@ -25,34 +26,22 @@ constexpr double kDegenerateNormalSine = 1e-10;
 /// Where the normal is degenerate it is taken this far inside the patch, towards its centre.
 constexpr double kNormalInset = 1e-4;
 
-struct PowerTables {
-  std::vector<std::array<double, 4>> b, db;  // [1, t, t², t³] and its derivative
-  std::vector<double> t;
-};
-
-PowerTables powerTables(std::uint32_t n) {
-  PowerTables pt;
-  pt.b.resize(n);
-  pt.db.resize(n);
-  pt.t.resize(n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const double t = i + 1 == n ? 1.0 : static_cast<double>(i) / (n - 1);
-    pt.t[i] = t;
-    pt.b[i] = {1.0, t, t * t, t * t * t};
-    pt.db[i] = {0.0, 1.0, 2.0 * t, 3.0 * t * t};
-  }
-  return pt;
+/// Grid parameters: t[i] = i/(n-1), exactly 0 and 1 at the ends.
+std::vector<double> gridParams(std::uint32_t n) {
+  std::vector<double> t(n);
+  for (std::uint32_t i = 0; i < n; ++i) t[i] = i + 1 == n ? 1.0 : static_cast<double>(i) / (n - 1);
+  return t;
 }
 
 /// sin(π s) and its derivative on a force region, sampled on the grid (cf. forceShape).
-void shapeTable(const PowerTables& pt, double x0, double x1, std::vector<double>& s,
+void shapeTable(const std::vector<double>& grid, double x0, double x1, std::vector<double>& s,
                 std::vector<double>& ds) {
-  const std::size_t n = pt.t.size();
+  const std::size_t n = grid.size();
   s.assign(n, 0.0);
   ds.assign(n, 0.0);
   const double len = x1 - x0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double x = pt.t[i];
+    const double x = grid[i];
     if (x < x0 || x > x1) continue;
     const double t = (x - x0) / len;
     s[i] = std::sin(M_PI * std::min(t, 1.0 - t));
@@ -60,48 +49,122 @@ void shapeTable(const PowerTables& pt, double x0, double x1, std::vector<double>
   }
 }
 
-/// o = flip · (u × v) / |u × v| and l = |u × v|², over SoA arrays (kept as a separate
-/// function with restrict parameters: that is what lets the compiler vectorise it).
-void unitNormals(const double* __restrict ux, const double* __restrict uy,
-                 const double* __restrict uz, const double* __restrict vx,
-                 const double* __restrict vy, const double* __restrict vz, double* __restrict ox,
-                 double* __restrict oy, double* __restrict oz, double* __restrict l, std::size_t n,
-                 double flip) {
-  for (std::size_t i = 0; i < n; ++i) {
-    const double cx = uy[i] * vz[i] - uz[i] * vy[i];
-    const double cy = uz[i] * vx[i] - ux[i] * vz[i];
-    const double cz = ux[i] * vy[i] - uy[i] * vx[i];
-    const double len2 = cx * cx + cy * cy + cz * cz;
-    l[i] = len2;
+/// Per-point force contributions of one patch on the flattened grid: 9 arrays of m = n²
+/// values (position, ∂u, ∂v; x y z each).
+struct ForceGrid {
+  std::vector<double> v;
+  std::vector<double> su, dsu, sv, dsv;
+};
+
+void addForces(const VertexFramePatch& patch, const std::vector<double>& grid, ForceGrid& fg) {
+  const std::size_t n = grid.size(), m = n * n;
+  fg.v.assign(9 * m, 0.0);
+  for (const ForceTerm& f : patch.forces) {
+    shapeTable(grid, f.region.u0, f.region.u1, fg.su, fg.dsu);
+    shapeTable(grid, f.region.v0, f.region.v1, fg.sv, fg.dsv);
+    for (int c = 0; c < 3; ++c) {
+      double* p = fg.v.data() + c * m;
+      double* du = fg.v.data() + (3 + c) * m;
+      double* dv = fg.v.data() + (6 + c) * m;
+      for (std::size_t j = 0; j < n; ++j) {
+        const double kv = f.k[c] * fg.sv[j], kdv = f.k[c] * fg.dsv[j];
+        if (kv == 0.0 && kdv == 0.0) continue;
+        for (std::size_t i = 0; i < n; ++i) {
+          p[j * n + i] += kv * fg.su[i];
+          du[j * n + i] += kv * fg.dsu[i];
+          dv[j * n + i] += kdv * fg.su[i];
+        }
+      }
+    }
+  }
+}
+
+/// S, Su, Sv and the unit normal flip·(Su×Sv)/|Su×Sv| at m grid points (u[i], v[i]), the
+/// polynomial S = Σ c[k] m_k(u, v) per component (seed eq. 4) plus precomputed force terms.
+/// Writes positions and normals as interleaved floats and |Su×Sv|² for degeneracy checks.
+/// One function with restrict parameters so that the compiler vectorises the whole loop.
+template <bool Forces>
+void evaluateGrid(const double* __restrict u, const double* __restrict v, std::size_t m,
+                  const double (&c)[3][10], const double* __restrict force, double flip,
+                  float* __restrict pos, float* __restrict nor, double* __restrict cross2) {
+  for (std::size_t i = 0; i < m; ++i) {
+    const double x = u[i], y = v[i], xy = x * y;
+    double p[3], du[3], dv[3];
+    for (int k = 0; k < 3; ++k) {
+      const double* a = c[k];
+      p[k] = a[0] + x * (a[1] + x * (a[2] + x * a[3])) + y * (a[4] + y * (a[5] + y * a[6])) +
+             xy * (a[7] + x * a[8] + y * a[9]);
+      du[k] = a[1] + x * (2.0 * a[2] + 3.0 * x * a[3]) + y * (a[7] + 2.0 * x * a[8] + y * a[9]);
+      dv[k] = a[4] + y * (2.0 * a[5] + 3.0 * y * a[6]) + x * (a[7] + x * a[8] + 2.0 * y * a[9]);
+      if constexpr (Forces) {
+        p[k] += force[k * m + i];
+        du[k] += force[(3 + k) * m + i];
+        dv[k] += force[(6 + k) * m + i];
+      }
+    }
+    const double nx = du[1] * dv[2] - du[2] * dv[1];
+    const double ny = du[2] * dv[0] - du[0] * dv[2];
+    const double nz = du[0] * dv[1] - du[1] * dv[0];
+    const double len2 = nx * nx + ny * ny + nz * nz;
     const double inv = flip / std::sqrt(len2);
-    ox[i] = cx * inv;
-    oy[i] = cy * inv;
-    oz[i] = cz * inv;
+    cross2[i] = len2;
+    pos[3 * i] = static_cast<float>(p[0]);
+    pos[3 * i + 1] = static_cast<float>(p[1]);
+    pos[3 * i + 2] = static_cast<float>(p[2]);
+    nor[3 * i] = static_cast<float>(nx * inv);
+    nor[3 * i + 1] = static_cast<float>(ny * inv);
+    nor[3 * i + 2] = static_cast<float>(nz * inv);
   }
 }
 
-/// out[3i..3i+2] = (x[i], y[i], z[i]) as floats.
-void storeInterleaved(const double* __restrict x, const double* __restrict y,
-                      const double* __restrict z, float* __restrict out, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) {
-    out[3 * i] = static_cast<float>(x[i]);
-    out[3 * i + 1] = static_cast<float>(y[i]);
-    out[3 * i + 2] = static_cast<float>(z[i]);
-  }
+/// Whether any x[i] is not above `threshold` (NaN counts); vectorises as a standalone loop.
+bool anyNotAbove(const double* __restrict x, std::size_t m, double threshold) {
+  std::uint32_t count = 0;
+  for (std::size_t i = 0; i < m; ++i) count += !(x[i] > threshold);
+  return count != 0;
 }
 
-/// The two triangles of each quad between two rows of ids, wound by `flip`.
+/// Quads whose four corners are patch-interior points have ids a, a+1 (row j-1) and
+/// a+inner, a+inner+1 (row j): their indices are a fixed pattern plus a running base,
+/// written in blocks of kQuadBlock quads so that the loop vectorises.
+constexpr std::size_t kQuadBlock = 16;
+
+std::array<std::uint32_t, 6 * kQuadBlock> interiorQuadPattern(std::uint32_t inner, bool flip) {
+  const std::uint32_t noFlip[6] = {0, 1, inner + 1, 0, inner + 1, inner};
+  const std::uint32_t flipped[6] = {0, inner + 1, 1, 0, inner, inner + 1};
+  std::array<std::uint32_t, 6 * kQuadBlock> pattern{};
+  for (std::size_t q = 0; q < kQuadBlock; ++q)
+    for (std::size_t e = 0; e < 6; ++e)
+      pattern[6 * q + e] = static_cast<std::uint32_t>(q) + (flip ? flipped : noFlip)[e];
+  return pattern;
+}
+
+void writeInteriorQuads(std::uint32_t a0, std::size_t count,
+                        const std::array<std::uint32_t, 6 * kQuadBlock>& pattern,
+                        std::uint32_t* __restrict out) {
+  std::size_t q = 0;
+  for (; q + kQuadBlock <= count; q += kQuadBlock) {
+    const auto base = static_cast<std::uint32_t>(a0 + q);
+    std::uint32_t* o = out + 6 * q;
+    for (std::size_t e = 0; e < 6 * kQuadBlock; ++e) o[e] = base + pattern[e];
+  }
+  const auto base = static_cast<std::uint32_t>(a0 + q);
+  for (std::size_t e = 0; e < 6 * (count - q); ++e) out[6 * q + e] = base + pattern[e];
+}
+
+/// The two triangles of each quad between two rows of ids, wound by `Flip`.
+template <bool Flip>
 void writeQuadRow(const std::uint32_t* __restrict prev, const std::uint32_t* __restrict row,
-                  std::size_t quads, bool flip, std::uint32_t* __restrict out) {
+                  std::size_t quads, std::uint32_t* __restrict out) {
   for (std::size_t i = 0; i < quads; ++i) {
     const std::uint32_t a = prev[i], b = prev[i + 1], c = row[i + 1], d = row[i];
     std::uint32_t* o = out + 6 * i;
     o[0] = a;
-    o[1] = flip ? c : b;
-    o[2] = flip ? b : c;
+    o[1] = Flip ? c : b;
+    o[2] = Flip ? b : c;
     o[3] = a;
-    o[4] = flip ? d : c;
-    o[5] = flip ? c : d;
+    o[4] = Flip ? d : c;
+    o[5] = Flip ? c : d;
   }
 }
 
@@ -117,6 +180,7 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
   const FrameTopology& topo = *surface.topology;
   const std::uint32_t n = std::max<std::uint32_t>(2, options.resolution);
   const std::uint32_t inner = n - 2;
+  const std::size_t m = std::size_t{n} * n;
   const auto nFrames = static_cast<std::uint32_t>(surface.patches.size());
 
   // --- Vertex numbering.
@@ -148,41 +212,34 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
   // Boundary normals are sums over the patches that meet there, normalised at the end.
   std::fill_n(mesh.normals.begin(), std::size_t{boundaryCount} * 3, 0.0f);
 
-  const PowerTables pt = powerTables(n);
-  std::vector<double> row(std::size_t{n} * 13);  // SoA: p, du, dv, normal (xyz each), |Su×Sv|²
-  double* px = row.data();
-  double* dux = px + 3 * n;
-  double* dvx = px + 6 * n;
-  double* nx = px + 9 * n;
-  double* cross2 = px + 12 * n;
+  // The flattened grid: point j·n + i at (t[i], t[j]).
+  const std::vector<double> t = gridParams(n);
+  std::vector<double> gu(m), gv(m);
+  for (std::uint32_t j = 0; j < n; ++j)
+    for (std::uint32_t i = 0; i < n; ++i) {
+      gu[j * n + i] = t[i];
+      gv[j * n + i] = t[j];
+    }
+  std::vector<float> pos(3 * m), nor(3 * m);
+  std::vector<double> cross2(m);
   std::vector<std::uint32_t> ids0(n), ids1(n), ring(std::size_t{n} * 4);
-  struct ForceTables {
-    std::vector<double> su, dsu, sv, dsv;
-  };
-  std::vector<ForceTables> ft;
+  ForceGrid fg;
+  const auto pattern = interiorQuadPattern(inner, false);
+  const auto patternFlip = interiorQuadPattern(inner, true);
 
   for (std::uint32_t k = 0; k < nFrames; ++k) {
     const VertexFramePatch& patch = surface.patches[k];
     const double flip = topo.flipped[k] ? -1.0 : 1.0;
-    // A[c][i][j]: coefficient of u^i v^j in component c.
-    double a[3][4][4] = {};
-    for (int c = 0; c < 3; ++c) {
-      a[c][0][0] = patch.c[0][c];
-      a[c][1][0] = patch.c[1][c];
-      a[c][2][0] = patch.c[2][c];
-      a[c][3][0] = patch.c[3][c];
-      a[c][0][1] = patch.c[4][c];
-      a[c][0][2] = patch.c[5][c];
-      a[c][0][3] = patch.c[6][c];
-      a[c][1][1] = patch.c[7][c];
-      a[c][2][1] = patch.c[8][c];
-      a[c][1][2] = patch.c[9][c];
-    }
-    ft.resize(patch.forces.size());
-    for (std::size_t f = 0; f < patch.forces.size(); ++f) {
-      const Region& r = patch.forces[f].region;
-      shapeTable(pt, r.u0, r.u1, ft[f].su, ft[f].dsu);
-      shapeTable(pt, r.v0, r.v1, ft[f].sv, ft[f].dsv);
+    double c[3][10];
+    for (int comp = 0; comp < 3; ++comp)
+      for (int i = 0; i < 10; ++i) c[comp][i] = patch.c[i][comp];
+    if (patch.forces.empty()) {
+      evaluateGrid<false>(gu.data(), gv.data(), m, c, nullptr, flip, pos.data(), nor.data(),
+                          cross2.data());
+    } else {
+      addForces(patch, t, fg);
+      evaluateGrid<true>(gu.data(), gv.data(), m, c, fg.v.data(), flip, pos.data(), nor.data(),
+                         cross2.data());
     }
 
     // Mesh ids of the patch's boundary ring, side by side in the side's own direction.
@@ -196,85 +253,54 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
       std::uint32_t* ids = ring.data() + s * n;
       ids[0] = cornerId[rev ? edge.vertices[2] : edge.vertices[0]];
       ids[n - 1] = cornerId[rev ? edge.vertices[0] : edge.vertices[2]];
-      for (std::uint32_t t = 1; t + 1 < n; ++t)
-        ids[t] = edge.collapsed() ? ids[0] : edgeBase[e] + (rev ? n - 1 - t : t) - 1;
+      for (std::uint32_t q = 1; q + 1 < n; ++q)
+        ids[q] = edge.collapsed() ? ids[0] : edgeBase[e] + (rev ? n - 1 - q : q) - 1;
     }
     const bool anyCollapsed =
         collapsedSide[0] || collapsedSide[1] || collapsedSide[2] || collapsedSide[3];
-    // |Su|, |Sv| ≤ scale everywhere on the patch; a normal is degenerate when
-    // |Su × Sv| < kDegenerateNormalSine · scale² (rounding noise at a pole, a cusp).
+
+    // Degenerate normals. |Su|, |Sv| ≤ scale everywhere on the patch, so a normal is
+    // degenerate when |Su × Sv| < kDegenerateNormalSine · scale² (rounding noise at a pole,
+    // a cusp). Points on a collapsed side are a pole whatever rounding says. There the
+    // normal is taken from just inside the patch.
     double scale = 0.0;
     for (int i = 1; i < 10; ++i) scale += 3.0 * patch.c[i].norm();
-    for (std::size_t f = 0; f < patch.forces.size(); ++f) {
-      const Region& r = patch.forces[f].region;
-      scale += M_PI * patch.forces[f].k.norm() / std::min(r.u1 - r.u0, r.v1 - r.v0);
-    }
+    for (const ForceTerm& f : patch.forces)
+      scale += M_PI * f.k.norm() / std::min(f.region.u1 - f.region.u0, f.region.v1 - f.region.v0);
     const double degenerate2 = std::pow(kDegenerateNormalSine * scale * scale, 2);
+    auto insetNormal = [&](std::size_t idx) {
+      const std::size_t i = idx % n, j = idx / n;
+      const double uu = t[i] + kNormalInset * (0.5 - t[i]);
+      const double vv = t[j] + kNormalInset * (0.5 - t[j]);
+      const SurfacePoint sp = patch.evaluate(uu, vv);
+      Vec3 nrm = sp.du.cross(sp.dv);
+      const double nl = nrm.norm();
+      nrm = nl > 0.0 ? Vec3(flip * nrm / nl) : Vec3::Zero();
+      for (int comp = 0; comp < 3; ++comp) nor[3 * idx + comp] = static_cast<float>(nrm[comp]);
+    };
+    if (anyNotAbove(cross2.data(), m, degenerate2))
+      for (std::size_t idx = 0; idx < m; ++idx)
+        if (!(cross2[idx] > degenerate2)) insetNormal(idx);
+    if (anyCollapsed)
+      for (std::size_t q = 0; q < n; ++q) {
+        if (collapsedSide[0]) insetNormal(q);                // Alpha: row 0
+        if (collapsedSide[2]) insetNormal((n - 1) * n + q);  // Beta: row n-1
+        if (collapsedSide[3]) insetNormal(q * n);            // Gamma: column 0
+        if (collapsedSide[1]) insetNormal(q * n + n - 1);    // Delta: column n-1
+      }
 
+    // Interior rows are contiguous in the mesh: copy them whole.
+    for (std::uint32_t j = 1; j + 1 < n; ++j) {
+      const std::size_t dst = std::size_t{patchBase + (j - 1) * inner} * 3;
+      const std::size_t src = (std::size_t{j} * n + 1) * 3;
+      std::copy_n(pos.data() + src, 3 * inner, mesh.positions.data() + dst);
+      std::copy_n(nor.data() + src, 3 * inner, mesh.normals.data() + dst);
+    }
+
+    // Rows of mesh ids; boundary points set their position and add their normal.
     std::uint32_t* rowIds = ids1.data();
     std::uint32_t* prevIds = ids0.data();
     for (std::uint32_t j = 0; j < n; ++j) {
-      // Fold the v-powers of row j: r[c][i] (position) and rv[c][i] (∂/∂v).
-      double r[3][4], rv[3][4];
-      for (int c = 0; c < 3; ++c)
-        for (int i = 0; i < 4; ++i) {
-          r[c][i] = a[c][i][0] * pt.b[j][0] + a[c][i][1] * pt.b[j][1] + a[c][i][2] * pt.b[j][2] +
-                    a[c][i][3] * pt.b[j][3];
-          rv[c][i] = a[c][i][1] * pt.db[j][1] + a[c][i][2] * pt.db[j][2] + a[c][i][3] * pt.db[j][3];
-        }
-      for (int c = 0; c < 3; ++c) {
-        double* __restrict p = px + c * n;
-        double* __restrict du = dux + c * n;
-        double* __restrict dv = dvx + c * n;
-        const double* __restrict tt = pt.t.data();
-        const double r0 = r[c][0], r1 = r[c][1], r2 = r[c][2], r3 = r[c][3];
-        const double v0 = rv[c][0], v1 = rv[c][1], v2 = rv[c][2], v3 = rv[c][3];
-        for (std::uint32_t i = 0; i < n; ++i) {
-          const double t = tt[i];
-          p[i] = r0 + t * (r1 + t * (r2 + t * r3));
-          du[i] = r1 + t * (2.0 * r2 + t * 3.0 * r3);
-          dv[i] = v0 + t * (v1 + t * (v2 + t * v3));
-        }
-        for (std::size_t f = 0; f < ft.size(); ++f) {
-          const double kc = patch.forces[f].k[c];
-          const double kv = kc * ft[f].sv[j], kdv = kc * ft[f].dsv[j];
-          if (kv == 0.0 && kdv == 0.0) continue;
-          const double* __restrict su = ft[f].su.data();
-          const double* __restrict dsu = ft[f].dsu.data();
-          for (std::uint32_t i = 0; i < n; ++i) {
-            p[i] += kv * su[i];
-            du[i] += kv * dsu[i];
-            dv[i] += kdv * su[i];
-          }
-        }
-      }
-      unitNormals(dux, dux + n, dux + 2 * n, dvx, dvx + n, dvx + 2 * n, nx, nx + n, nx + 2 * n,
-                  cross2, n, flip);
-      // Points on a collapsed side are a pole whatever rounding says; there, and wherever
-      // the tangents degenerate, the normal is taken from just inside the patch.
-      const bool poleRow = (j == 0 && collapsedSide[0]) || (j + 1 == n && collapsedSide[2]);
-      bool degenerate = false;
-      for (std::uint32_t i = 0; i < n; ++i) degenerate |= !(cross2[i] > degenerate2);
-      if (degenerate || poleRow || anyCollapsed) {
-        for (std::uint32_t i = 0; i < n; ++i) {
-          const bool pole =
-              poleRow || (i == 0 && collapsedSide[3]) || (i + 1 == n && collapsedSide[1]);
-          if (!pole) {
-            if (cross2[i] > degenerate2) continue;
-          }
-          const double u = pt.t[i] + kNormalInset * (0.5 - pt.t[i]);
-          const double v = pt.t[j] + kNormalInset * (0.5 - pt.t[j]);
-          const SurfacePoint sp = patch.evaluate(u, v);
-          Vec3 nrm = sp.du.cross(sp.dv);
-          const double nl = nrm.norm();
-          nrm = nl > 0.0 ? Vec3(flip * nrm / nl) : Vec3::Zero();
-          nx[i] = nrm.x();
-          nx[n + i] = nrm.y();
-          nx[2 * n + i] = nrm.z();
-        }
-      }
-
-      // Mesh ids of row j.
       std::swap(rowIds, prevIds);
       if (j == 0) {
         std::copy_n(ring.data(), n, rowIds);  // Alpha
@@ -284,49 +310,53 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
         rowIds[0] = ring[3 * n + j];      // Gamma
         rowIds[n - 1] = ring[1 * n + j];  // Delta
         const std::uint32_t base = patchBase + (j - 1) * inner - 1;
-        for (std::uint32_t i = 1; i + 1 < n; ++i) rowIds[i] = base + i;
-      }
-
-      // Store: interior points straight into the mesh, boundary points accumulate normals.
-      float* pos = mesh.positions.data();
-      float* nor = mesh.normals.data();
-      const bool innerRow = j > 0 && j + 1 < n;
-      if (innerRow && inner > 0) {
-        const std::size_t base = std::size_t{patchBase + (j - 1) * inner} * 3;
-        storeInterleaved(px + 1, px + n + 1, px + 2 * n + 1, pos + base, inner);
-        storeInterleaved(nx + 1, nx + n + 1, nx + 2 * n + 1, nor + base, inner);
+        // Rows next to Alpha or Beta (and all rows of small or pole patches) take the
+        // generic quad writer, which reads the whole row; the pattern writer needs 4 ids.
+        const bool fullRow = j == 1 || j + 2 == n || anyCollapsed || n < 4;
+        if (fullRow) {
+          for (std::uint32_t i = 1; i + 1 < n; ++i) rowIds[i] = base + i;
+        } else {
+          rowIds[1] = base + 1;
+          rowIds[n - 2] = base + n - 2;
+        }
       }
       auto storeBoundary = [&](std::uint32_t i) {
-        const std::size_t o = std::size_t{rowIds[i]} * 3;
-        pos[o] = static_cast<float>(px[i]);
-        pos[o + 1] = static_cast<float>(px[n + i]);
-        pos[o + 2] = static_cast<float>(px[2 * n + i]);
-        nor[o] += static_cast<float>(nx[i]);
-        nor[o + 1] += static_cast<float>(nx[n + i]);
-        nor[o + 2] += static_cast<float>(nx[2 * n + i]);
+        const std::size_t o = std::size_t{rowIds[i]} * 3, g = (std::size_t{j} * n + i) * 3;
+        for (int comp = 0; comp < 3; ++comp) {
+          mesh.positions[o + comp] = pos[g + comp];
+          mesh.normals[o + comp] += nor[g + comp];
+        }
       };
-      if (innerRow) {
+      if (j == 0 || j + 1 == n) {
+        for (std::uint32_t i = 0; i < n; ++i) storeBoundary(i);
+      } else {
         storeBoundary(0);
         storeBoundary(n - 1);
-      } else {
-        for (std::uint32_t i = 0; i < n; ++i) storeBoundary(i);
       }
 
-      // Triangles between row j-1 and row j: quad (a b c d) = (prev i, prev i+1, row i+1, row i).
+      // Triangles between row j-1 and row j: quad (prev i, prev i+1, row i+1, row i).
       if (j == 0) continue;
       std::uint32_t* out = mesh.indices.data() + triangles * 3;
       std::uint32_t* outPatch = mesh.patchIds.data() + triangles;
       if (!anyCollapsed) {  // no repeated ids: every quad gives two triangles
-        writeQuadRow(prevIds, rowIds, n - 1, flip < 0, out);
+        auto quadRow = flip < 0 ? writeQuadRow<true> : writeQuadRow<false>;
+        if (j >= 2 && j + 2 <= n && n >= 4) {
+          // Boundary quads at both ends, the patch-interior quads between them by pattern.
+          quadRow(prevIds, rowIds, 1, out);
+          writeInteriorQuads(prevIds[1], n - 3, flip < 0 ? patternFlip : pattern, out + 6);
+          quadRow(prevIds + n - 2, rowIds + n - 2, 1, out + 6 * (n - 2));
+        } else {
+          quadRow(prevIds, rowIds, n - 1, out);
+        }
         std::fill_n(outPatch, 2 * (n - 1), k);
         outPatch += 2 * (n - 1);
       } else {
         for (std::uint32_t i = 0; i + 1 < n; ++i) {
           std::uint32_t quad[6];
-          writeQuadRow(prevIds + i, rowIds + i, 1, flip < 0, quad);
-          for (const std::uint32_t* t : {quad, quad + 3}) {
-            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
-            std::copy_n(t, 3, out);
+          (flip < 0 ? writeQuadRow<true> : writeQuadRow<false>)(prevIds + i, rowIds + i, 1, quad);
+          for (const std::uint32_t* tri : {quad, quad + 3}) {
+            if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+            std::copy_n(tri, 3, out);
             out += 3;
             *outPatch++ = k;
           }
@@ -342,7 +372,7 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
     float* nv = mesh.normals.data() + std::size_t{v} * 3;
     const float len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
     const float inv = len > 0.0f ? 1.0f / len : 0.0f;
-    for (int c = 0; c < 3; ++c) nv[c] *= inv;
+    for (int comp = 0; comp < 3; ++comp) nv[comp] *= inv;
   }
 }
 

@@ -552,7 +552,20 @@ TEST(ModelIoErrors, SharedForceWithNoSolution) {
   doc["frames"][1]["a2"] = {-3, 1, 1};  // a1 + a2 = 0 in x
   doc["forces"] = Json::parse(R"([{"f0": [0, 0, 1], "frames": [0, 1]},
                                   {"f0": [2, 0, 0], "frames": [0, 1]}])");
-  expectDocError(doc, "$.forces[1]", {"on frame 1", "a1.x/Lu² + a2.x/Lv² is 0", "f0.x = 2"});
+  expectDocError(doc, "$.forces[1]",
+                 {"on frame 1", "a1.x/Lu² + a2.x/Lv² is 0", "f0.x = 2", "a1 or a2 of frames[1]"});
+}
+
+TEST(ModelIoErrors, ForceOnARegionTooThinForADouble) {
+  // Lu = 1e-200: Lu² underflows to 0 and a1/Lu² is infinite.
+  Json doc = twoFrames();
+  doc["frames"][0]["forces"] = Json::parse(R"([{"f0": [0, 0, 1], "region": [0, 1e-200, 0, 1]}])");
+  expectDocError(
+      doc, "$.frames[0].forces[0]",
+      {"a1.z/Lu² + a2.z/Lv² is not finite", "Lu = 1e-200", "change a1, a2 or the region"});
+  // Only components with a force count.
+  doc["frames"][0]["forces"][0]["f0"] = {0, 0, 0};
+  EXPECT_NO_THROW(parseVertexFrameModel(doc.dump(), kFile));
 }
 
 // ---------------------------------------------------------------------------------------
