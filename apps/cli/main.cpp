@@ -66,6 +66,12 @@ std::string modelName(const VertexFrameModel& model, const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+/// "1 frame", "2 frames", "1 vertex", "3 vertices".
+std::string count(std::size_t n, const std::string& noun) {
+  if (n == 1) return "1 " + noun;
+  return fmt::format("{} {}", n, noun == "vertex" ? "vertices" : noun + "s");
+}
+
 int runBuild(const std::string& modelPath, const std::string& outPath, std::uint32_t resolution,
              const SolveArgs& args, bool quiet) {
   try {
@@ -88,10 +94,11 @@ int runBuild(const std::string& modelPath, const std::string& outPath, std::uint
   if (!quiet) {
     const C0Report c0 = measureC0Gap(surface);
     fmt::print(
-        "{}: {} frames, {} strips, {} vertices, {} triangles, C0 gap {:.3g} -> {} "
+        "{}: {}, {}, {}, {}, C0 gap {:.3g} -> {} "
         "(solve {:.3f} ms, tessellate {:.3f} ms, write {:.1f} ms)\n",
-        modelName(model, modelPath), model.frames.size(), surface.topology->stripCount,
-        mesh.vertexCount(), mesh.triangleCount(), c0.maxGap, outPath, solveMs, tessMs, writeMs);
+        modelName(model, modelPath), count(model.frames.size(), "frame"),
+        count(surface.topology->stripCount, "strip"), count(mesh.vertexCount(), "vertex"),
+        count(mesh.triangleCount(), "triangle"), c0.maxGap, outPath, solveMs, tessMs, writeMs);
   }
   return 0;
 }
@@ -176,10 +183,11 @@ int main(int argc, char** argv) {
   SolveArgs solveArgs;
 
   CLI::App* build = app.add_subcommand("build",
-                                       "Solve a model and write its mesh (OBJ, PLY, STL or "
-                                       "glb, chosen by the output's extension)");
+                                       "Solve a model and write its mesh (OBJ, PLY, STL, "
+                                       "glb or OFF, chosen by the output's extension)");
   build->add_option("model", modelPath, "model file (JSON)")->required();
-  build->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb")->required();
+  build->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb .off")
+      ->required();
   build->add_option("--resolution", resolution, "samples per patch side")
       ->check(CLI::Range(2u, 4097u))
       ->capture_default_str();
