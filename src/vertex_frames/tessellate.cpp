@@ -20,6 +20,9 @@ namespace {
 
 constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
+/// Doubles in one vector register (AVX-512 holds 8; rows padded to this suit AVX2 too).
+constexpr std::size_t kLanes = 8;
+
 /// A normal counts as degenerate (a pole, a cusp) when |Su × Sv| is below this fraction of
 /// the patch's squared size: far below any real surface, far above rounding noise (1e-16).
 constexpr double kDegenerateNormalSine = 1e-10;
@@ -49,57 +52,81 @@ void shapeTable(const std::vector<double>& grid, double x0, double x1, std::vect
   }
 }
 
-/// Per-point force contributions of one patch on the flattened grid: 9 arrays of m = n²
-/// values (position, ∂u, ∂v; x y z each).
-struct ForceGrid {
-  std::vector<double> v;
+/// Per-u and per-v tables of each force of a patch, on the padded grid.
+struct ForceTables {
   std::vector<double> su, dsu, sv, dsv;
 };
 
-void addForces(const VertexFramePatch& patch, const std::vector<double>& grid, ForceGrid& fg) {
-  const std::size_t n = grid.size(), m = n * n;
-  fg.v.assign(9 * m, 0.0);
-  for (const ForceTerm& f : patch.forces) {
-    shapeTable(grid, f.region.u0, f.region.u1, fg.su, fg.dsu);
-    shapeTable(grid, f.region.v0, f.region.v1, fg.sv, fg.dsv);
+/// The summed force terms of row j, as 9 rows of np values (position, ∂u, ∂v; x y z
+/// each): Σ k ⊙ (s(u) s(v), s'(u) s(v), s(u) s'(v)). False when no force reaches row j.
+bool rowForces(const VertexFramePatch& patch, const std::vector<ForceTables>& tables, std::size_t j,
+               std::size_t np, std::vector<double>& out) {
+  bool any = false;
+  for (std::size_t f = 0; f < patch.forces.size(); ++f) {
+    const ForceTables& ft = tables[f];
+    if (ft.sv[j] == 0.0 && ft.dsv[j] == 0.0) continue;
+    if (!any) out.assign(9 * np, 0.0);
+    any = true;
     for (int c = 0; c < 3; ++c) {
-      double* p = fg.v.data() + c * m;
-      double* du = fg.v.data() + (3 + c) * m;
-      double* dv = fg.v.data() + (6 + c) * m;
-      for (std::size_t j = 0; j < n; ++j) {
-        const double kv = f.k[c] * fg.sv[j], kdv = f.k[c] * fg.dsv[j];
-        if (kv == 0.0 && kdv == 0.0) continue;
-        for (std::size_t i = 0; i < n; ++i) {
-          p[j * n + i] += kv * fg.su[i];
-          du[j * n + i] += kv * fg.dsu[i];
-          dv[j * n + i] += kdv * fg.su[i];
-        }
+      const double kv = patch.forces[f].k[c] * ft.sv[j], kdv = patch.forces[f].k[c] * ft.dsv[j];
+      double* p = out.data() + c * np;
+      double* du = out.data() + (3 + c) * np;
+      double* dv = out.data() + (6 + c) * np;
+      for (std::size_t i = 0; i < np; ++i) {
+        p[i] += kv * ft.su[i];
+        du[i] += kv * ft.dsu[i];
+        dv[i] += kdv * ft.su[i];
       }
     }
   }
+  return any;
 }
 
-/// S, Su, Sv and the unit normal flip·(Su×Sv)/|Su×Sv| at m grid points (u[i], v[i]), the
-/// polynomial S = Σ c[k] m_k(u, v) per component (seed eq. 4) plus precomputed force terms.
+/// Row j of a patch folded over its v-powers, per component: S = Σ_i p[i] u^i,
+/// Su = Σ_i du[i] u^i, Sv = Σ_i dv[i] u^i (cubic, quadratic and cubic in u).
+struct RowPolynomials {
+  double p[3][4], du[3][3], dv[3][4];
+};
+
+RowPolynomials foldRow(const double (&c)[3][10], double v) {
+  RowPolynomials r;
+  const double v2 = v * v, v3 = v2 * v;
+  for (int k = 0; k < 3; ++k) {
+    const double* a = c[k];  // monomials 1 u u² u³ v v² v³ uv u²v uv² (seed eq. 4)
+    r.p[k][0] = a[0] + v * a[4] + v2 * a[5] + v3 * a[6];
+    r.p[k][1] = a[1] + v * a[7] + v2 * a[9];
+    r.p[k][2] = a[2] + v * a[8];
+    r.p[k][3] = a[3];
+    r.du[k][0] = r.p[k][1];
+    r.du[k][1] = 2.0 * r.p[k][2];
+    r.du[k][2] = 3.0 * a[3];
+    r.dv[k][0] = a[4] + 2.0 * v * a[5] + 3.0 * v2 * a[6];
+    r.dv[k][1] = a[7] + 2.0 * v * a[9];
+    r.dv[k][2] = a[8];
+    r.dv[k][3] = 0.0;
+  }
+  return r;
+}
+
+/// S and the unit normal flip·(Su×Sv)/|Su×Sv| at `count` points u[i] of one row, plus
+/// force terms (9 arrays at `forceStride`: position, ∂u, ∂v; x y z each) when Forces.
 /// Writes positions and normals as interleaved floats and |Su×Sv|² for degeneracy checks.
-/// One function with restrict parameters so that the compiler vectorises the whole loop.
+/// One function with restrict parameters so that the compiler vectorises the loop.
 template <bool Forces>
-void evaluateGrid(const double* __restrict u, const double* __restrict v, std::size_t m,
-                  const double (&c)[3][10], const double* __restrict force, double flip,
-                  float* __restrict pos, float* __restrict nor, double* __restrict cross2) {
-  for (std::size_t i = 0; i < m; ++i) {
-    const double x = u[i], y = v[i], xy = x * y;
+void evaluateRow(const double* __restrict u, std::size_t count, const RowPolynomials& r,
+                 const double* __restrict force, std::size_t forceStride, double flip,
+                 float* __restrict pos, float* __restrict nor, double* __restrict cross2) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const double x = u[i];
     double p[3], du[3], dv[3];
     for (int k = 0; k < 3; ++k) {
-      const double* a = c[k];
-      p[k] = a[0] + x * (a[1] + x * (a[2] + x * a[3])) + y * (a[4] + y * (a[5] + y * a[6])) +
-             xy * (a[7] + x * a[8] + y * a[9]);
-      du[k] = a[1] + x * (2.0 * a[2] + 3.0 * x * a[3]) + y * (a[7] + 2.0 * x * a[8] + y * a[9]);
-      dv[k] = a[4] + y * (2.0 * a[5] + 3.0 * y * a[6]) + x * (a[7] + x * a[8] + 2.0 * y * a[9]);
+      p[k] = r.p[k][0] + x * (r.p[k][1] + x * (r.p[k][2] + x * r.p[k][3]));
+      du[k] = r.du[k][0] + x * (r.du[k][1] + x * r.du[k][2]);
+      dv[k] = r.dv[k][0] + x * (r.dv[k][1] + x * r.dv[k][2]);
       if constexpr (Forces) {
-        p[k] += force[k * m + i];
-        du[k] += force[(3 + k) * m + i];
-        dv[k] += force[(6 + k) * m + i];
+        p[k] += force[k * forceStride + i];
+        du[k] += force[(3 + k) * forceStride + i];
+        dv[k] += force[(6 + k) * forceStride + i];
       }
     }
     const double nx = du[1] * dv[2] - du[2] * dv[1];
@@ -154,8 +181,8 @@ void writeInteriorQuads(std::uint32_t a0, std::size_t count,
 
 /// The two triangles of each quad between two rows of ids, wound by `Flip`.
 template <bool Flip>
-void writeQuadRow(const std::uint32_t* __restrict prev, const std::uint32_t* __restrict row,
-                  std::size_t quads, std::uint32_t* __restrict out) {
+inline void writeQuadRow(const std::uint32_t* __restrict prev, const std::uint32_t* __restrict row,
+                         std::size_t quads, std::uint32_t* __restrict out) {
   for (std::size_t i = 0; i < quads; ++i) {
     const std::uint32_t a = prev[i], b = prev[i + 1], c = row[i + 1], d = row[i];
     std::uint32_t* o = out + 6 * i;
@@ -180,7 +207,10 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
   const FrameTopology& topo = *surface.topology;
   const std::uint32_t n = std::max<std::uint32_t>(2, options.resolution);
   const std::uint32_t inner = n - 2;
-  const std::size_t m = std::size_t{n} * n;
+  // The patch's grid buffers hold rows of np ≥ n points, np a multiple of kLanes, so the
+  // row kernel's vector loop covers every row without a scalar remainder.
+  const std::size_t np = (n + kLanes - 1) / kLanes * kLanes;
+  const std::size_t m = std::size_t{n} * np;
   const auto nFrames = static_cast<std::uint32_t>(surface.patches.size());
 
   // --- Vertex numbering.
@@ -214,16 +244,13 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
 
   // The flattened grid: point j·n + i at (t[i], t[j]).
   const std::vector<double> t = gridParams(n);
-  std::vector<double> gu(m), gv(m);
-  for (std::uint32_t j = 0; j < n; ++j)
-    for (std::uint32_t i = 0; i < n; ++i) {
-      gu[j * n + i] = t[i];
-      gv[j * n + i] = t[j];
-    }
+  std::vector<double> tp(np, 1.0);  // t padded with copies of its last value
+  std::copy(t.begin(), t.end(), tp.begin());
   std::vector<float> pos(3 * m), nor(3 * m);
   std::vector<double> cross2(m);
   std::vector<std::uint32_t> ids0(n), ids1(n), ring(std::size_t{n} * 4);
-  ForceGrid fg;
+  std::vector<ForceTables> forceTables;
+  std::vector<double> forceRow;
   const auto pattern = interiorQuadPattern(inner, false);
   const auto patternFlip = interiorQuadPattern(inner, true);
 
@@ -233,17 +260,25 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
     double c[3][10];
     for (int comp = 0; comp < 3; ++comp)
       for (int i = 0; i < 10; ++i) c[comp][i] = patch.c[i][comp];
-    if (patch.forces.empty()) {
-      evaluateGrid<false>(gu.data(), gv.data(), m, c, nullptr, flip, pos.data(), nor.data(),
-                          cross2.data());
-    } else {
-      addForces(patch, t, fg);
-      evaluateGrid<true>(gu.data(), gv.data(), m, c, fg.v.data(), flip, pos.data(), nor.data(),
-                         cross2.data());
+    forceTables.resize(patch.forces.size());
+    for (std::size_t f = 0; f < patch.forces.size(); ++f) {
+      const Region& r = patch.forces[f].region;
+      shapeTable(tp, r.u0, r.u1, forceTables[f].su, forceTables[f].dsu);
+      shapeTable(tp, r.v0, r.v1, forceTables[f].sv, forceTables[f].dsv);
     }
+    for (std::uint32_t j = 0; j < n; ++j) {
+      const RowPolynomials rp = foldRow(c, t[j]);
+      const std::size_t g = j * np;
+      if (!rowForces(patch, forceTables, j, np, forceRow))
+        evaluateRow<false>(tp.data(), np, rp, nullptr, np, flip, pos.data() + 3 * g,
+                           nor.data() + 3 * g, cross2.data() + g);
+      else
+        evaluateRow<true>(tp.data(), np, rp, forceRow.data(), np, flip, pos.data() + 3 * g,
+                          nor.data() + 3 * g, cross2.data() + g);
+    }
+    const std::uint32_t patchBase = interiorBase + k * inner * inner;
 
     // Mesh ids of the patch's boundary ring, side by side in the side's own direction.
-    const std::uint32_t patchBase = interiorBase + k * inner * inner;
     bool collapsedSide[4];
     for (int s = 0; s < 4; ++s) {
       const std::uint32_t e = topo.edgeOf[k][s];
@@ -268,31 +303,32 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
     for (const ForceTerm& f : patch.forces)
       scale += M_PI * f.k.norm() / std::min(f.region.u1 - f.region.u0, f.region.v1 - f.region.v0);
     const double degenerate2 = std::pow(kDegenerateNormalSine * scale * scale, 2);
-    auto insetNormal = [&](std::size_t idx) {
-      const std::size_t i = idx % n, j = idx / n;
+    auto insetNormal = [&](std::size_t i, std::size_t j) {
       const double uu = t[i] + kNormalInset * (0.5 - t[i]);
       const double vv = t[j] + kNormalInset * (0.5 - t[j]);
       const SurfacePoint sp = patch.evaluate(uu, vv);
       Vec3 nrm = sp.du.cross(sp.dv);
       const double nl = nrm.norm();
       nrm = nl > 0.0 ? Vec3(flip * nrm / nl) : Vec3::Zero();
-      for (int comp = 0; comp < 3; ++comp) nor[3 * idx + comp] = static_cast<float>(nrm[comp]);
+      for (int comp = 0; comp < 3; ++comp)
+        nor[3 * (j * np + i) + comp] = static_cast<float>(nrm[comp]);
     };
-    if (anyNotAbove(cross2.data(), m, degenerate2))
-      for (std::size_t idx = 0; idx < m; ++idx)
-        if (!(cross2[idx] > degenerate2)) insetNormal(idx);
+    for (std::size_t j = 0; j < n; ++j)
+      if (anyNotAbove(cross2.data() + j * np, n, degenerate2))
+        for (std::size_t i = 0; i < n; ++i)
+          if (!(cross2[j * np + i] > degenerate2)) insetNormal(i, j);
     if (anyCollapsed)
       for (std::size_t q = 0; q < n; ++q) {
-        if (collapsedSide[0]) insetNormal(q);                // Alpha: row 0
-        if (collapsedSide[2]) insetNormal((n - 1) * n + q);  // Beta: row n-1
-        if (collapsedSide[3]) insetNormal(q * n);            // Gamma: column 0
-        if (collapsedSide[1]) insetNormal(q * n + n - 1);    // Delta: column n-1
+        if (collapsedSide[0]) insetNormal(q, 0);      // Alpha: row 0
+        if (collapsedSide[2]) insetNormal(q, n - 1);  // Beta: row n-1
+        if (collapsedSide[3]) insetNormal(0, q);      // Gamma: column 0
+        if (collapsedSide[1]) insetNormal(n - 1, q);  // Delta: column n-1
       }
 
     // Interior rows are contiguous in the mesh: copy them whole.
     for (std::uint32_t j = 1; j + 1 < n; ++j) {
       const std::size_t dst = std::size_t{patchBase + (j - 1) * inner} * 3;
-      const std::size_t src = (std::size_t{j} * n + 1) * 3;
+      const std::size_t src = (j * np + 1) * 3;
       std::copy_n(pos.data() + src, 3 * inner, mesh.positions.data() + dst);
       std::copy_n(nor.data() + src, 3 * inner, mesh.normals.data() + dst);
     }
@@ -321,7 +357,7 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
         }
       }
       auto storeBoundary = [&](std::uint32_t i) {
-        const std::size_t o = std::size_t{rowIds[i]} * 3, g = (std::size_t{j} * n + i) * 3;
+        const std::size_t o = std::size_t{rowIds[i]} * 3, g = (j * np + i) * 3;
         for (int comp = 0; comp < 3; ++comp) {
           mesh.positions[o + comp] = pos[g + comp];
           mesh.normals[o + comp] += nor[g + comp];
@@ -339,7 +375,13 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
       std::uint32_t* out = mesh.indices.data() + triangles * 3;
       std::uint32_t* outPatch = mesh.patchIds.data() + triangles;
       if (!anyCollapsed) {  // no repeated ids: every quad gives two triangles
-        auto quadRow = flip < 0 ? writeQuadRow<true> : writeQuadRow<false>;
+        auto quadRow = [flipped = flip < 0](const std::uint32_t* a, const std::uint32_t* b,
+                                            std::size_t quads, std::uint32_t* o) {
+          if (flipped)
+            writeQuadRow<true>(a, b, quads, o);
+          else
+            writeQuadRow<false>(a, b, quads, o);
+        };
         if (j >= 2 && j + 2 <= n && n >= 4) {
           // Boundary quads at both ends, the patch-interior quads between them by pattern.
           quadRow(prevIds, rowIds, 1, out);
@@ -353,7 +395,10 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
       } else {
         for (std::uint32_t i = 0; i + 1 < n; ++i) {
           std::uint32_t quad[6];
-          (flip < 0 ? writeQuadRow<true> : writeQuadRow<false>)(prevIds + i, rowIds + i, 1, quad);
+          if (flip < 0)
+            writeQuadRow<true>(prevIds + i, rowIds + i, 1, quad);
+          else
+            writeQuadRow<false>(prevIds + i, rowIds + i, 1, quad);
           for (const std::uint32_t* tri : {quad, quad + 3}) {
             if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
             std::copy_n(tri, 3, out);
