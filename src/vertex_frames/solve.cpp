@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "pdesurf/vertex_frames.hpp"
+#include "vertex_frames/force_shape.hpp"
 
 namespace pdesurf {
 
@@ -45,19 +46,6 @@ Vec3 minimiser(const Vec3& a, const Vec3& b) {
 std::array<Vec3, 2> residualTerm(const Frame& f, const CrossTerms& t, int direction) {
   if (direction == 0) return {f.a1, (f.a2.array() * t.c9.array()).matrix() / 3.0};
   return {f.a2, (f.a1.array() * t.c8.array()).matrix() / 3.0};
-}
-
-/// The force shape sin(π t) on [0,1] and 0 outside, exactly 0 at both ends of the region
-/// (sin(π·min(t,1-t)) is symmetric, so sin(π) ≠ 0 rounding never breaks C0), and its
-/// derivative with respect to the patch parameter.
-struct Shape {
-  double s, ds;
-};
-Shape forceShape(double x, double x0, double x1) {
-  if (x < x0 || x > x1) return {0.0, 0.0};
-  const double len = x1 - x0;
-  const double t = (x - x0) / len;
-  return {std::sin(kPi * std::min(t, 1.0 - t)), kPi / len * std::cos(kPi * t)};
 }
 
 }  // namespace
@@ -128,8 +116,8 @@ Vec3 VertexFramePatch::position(double u, double v) const {
   Vec3 p = c[0] + u * c[1] + u2 * c[2] + u2 * u * c[3] + v * c[4] + v2 * c[5] + v2 * v * c[6] +
            u * v * c[7] + u2 * v * c[8] + u * v2 * c[9];
   for (const ForceTerm& f : forces) {
-    const Shape su = forceShape(u, f.region.u0, f.region.u1);
-    const Shape sv = forceShape(v, f.region.v0, f.region.v1);
+    const detail::ForceShape su = detail::forceShape(u, f.region.u0, f.region.u1);
+    const detail::ForceShape sv = detail::forceShape(v, f.region.v0, f.region.v1);
     p += (su.s * sv.s) * f.k;
   }
   return p;
@@ -142,8 +130,8 @@ SurfacePoint VertexFramePatch::evaluate(double u, double v) const {
   r.du = c[1] + 2.0 * u * c[2] + 3.0 * u2 * c[3] + v * c[7] + 2.0 * u * v * c[8] + v2 * c[9];
   r.dv = c[4] + 2.0 * v * c[5] + 3.0 * v2 * c[6] + u * c[7] + u2 * c[8] + 2.0 * u * v * c[9];
   for (const ForceTerm& f : forces) {
-    const Shape su = forceShape(u, f.region.u0, f.region.u1);
-    const Shape sv = forceShape(v, f.region.v0, f.region.v1);
+    const detail::ForceShape su = detail::forceShape(u, f.region.u0, f.region.u1);
+    const detail::ForceShape sv = detail::forceShape(v, f.region.v0, f.region.v1);
     r.du += (su.ds * sv.s) * f.k;
     r.dv += (su.s * sv.ds) * f.k;
   }

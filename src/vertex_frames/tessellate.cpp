@@ -5,14 +5,16 @@
 // side), then each patch's interior grid. Boundary vertices therefore come first, and
 // their normals are accumulated over the patches that meet there, then normalised.
 //
-// Speed: a patch's whole n×n grid is evaluated in one fused, vectorised loop (position,
-// both derivatives, the unit normal, written as floats); force terms, products of per-u
-// and per-v tables, are added through precomputed grids only for patches that have them.
-// Interior rows of a patch are contiguous in the mesh and are copied there whole.
+// Speed: a patch is a cubic in u per row once its v-powers are folded (foldRow), so each
+// row is one fused, vectorised loop (position, both derivatives, the unit normal, written
+// as floats) over a row padded to whole vector registers; force terms, products of per-u
+// and per-v tables, are summed per row only where a force reaches it. Interior rows of a
+// patch are contiguous in the mesh and are copied there whole.
 #include <algorithm>
 #include <cmath>
 
 #include "pdesurf/vertex_frames.hpp"
+#include "vertex_frames/force_shape.hpp"
 
 namespace pdesurf {
 
@@ -36,19 +38,15 @@ std::vector<double> gridParams(std::uint32_t n) {
   return t;
 }
 
-/// sin(π s) and its derivative on a force region, sampled on the grid (cf. forceShape).
+/// The force shape and its derivative sampled on the grid.
 void shapeTable(const std::vector<double>& grid, double x0, double x1, std::vector<double>& s,
                 std::vector<double>& ds) {
-  const std::size_t n = grid.size();
-  s.assign(n, 0.0);
-  ds.assign(n, 0.0);
-  const double len = x1 - x0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double x = grid[i];
-    if (x < x0 || x > x1) continue;
-    const double t = (x - x0) / len;
-    s[i] = std::sin(M_PI * std::min(t, 1.0 - t));
-    ds[i] = M_PI / len * std::cos(M_PI * t);
+  s.resize(grid.size());
+  ds.resize(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const detail::ForceShape f = detail::forceShape(grid[i], x0, x1);
+    s[i] = f.s;
+    ds[i] = f.ds;
   }
 }
 
