@@ -68,6 +68,10 @@ TEST_P(Example, TessellatesToAWatertightOrientedMeshThatSurvivesEveryFormat) {
     const Mesh back = readMesh(path);
     EXPECT_EQ(back.vertexCount(), mesh.vertexCount()) << ext;
     EXPECT_EQ(back.triangleCount(), mesh.triangleCount()) << ext;
+    // Still watertight where the model is: the same open edges, all oriented alike.
+    const auto backStats = testing::edgeStats(back);
+    EXPECT_EQ(backStats.boundaryEdges, stats.boundaryEdges) << ext;
+    EXPECT_EQ(backStats.inconsistentlyOrientedEdges, 0u) << ext;
   }
   fs::remove_all(dir);
 }

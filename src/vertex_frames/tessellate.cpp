@@ -12,6 +12,9 @@
 // patch are contiguous in the mesh and are copied there whole.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "pdesurf/vertex_frames.hpp"
 #include "vertex_frames/force_shape.hpp"
@@ -221,6 +224,18 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
     for (std::uint32_t e : topo.edgeOf[k])
       for (std::uint32_t v : {topo.edges[e].vertices[0], topo.edges[e].vertices[2]})
         if (cornerId[v] == kNone) cornerId[v] = next++;
+  // Indices are 32-bit (as in glTF and GL): refuse meshes that do not fit.
+  std::uint64_t edgePoints = 0;
+  for (const ModelEdge& e : topo.edges)
+    if (!e.collapsed()) edgePoints += inner;
+  const std::uint64_t vertices64 =
+      std::uint64_t{next} + edgePoints + std::uint64_t{nFrames} * inner * inner;
+  const std::uint64_t triangles64 = std::uint64_t{nFrames} * (n - 1) * (n - 1) * 2;
+  if (vertices64 >= kNone || triangles64 * 3 >= kNone)
+    throw std::length_error(fmt::format(
+        "a mesh of {} frames at resolution {} would have {} vertices and {} triangles, more "
+        "than 32-bit indices can address: lower the resolution",
+        nFrames, n, vertices64, triangles64));
   std::vector<std::uint32_t> edgeBase(topo.edges.size(), kNone);
   for (std::size_t e = 0; e < topo.edges.size(); ++e)
     if (!topo.edges[e].collapsed()) {
@@ -229,7 +244,7 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
     }
   const std::uint32_t boundaryCount = next;
   const std::uint32_t interiorBase = next;
-  const std::uint32_t vertexCount = next + nFrames * inner * inner;
+  const auto vertexCount = static_cast<std::uint32_t>(vertices64);
 
   mesh.positions.resize(std::size_t{vertexCount} * 3);
   mesh.normals.resize(std::size_t{vertexCount} * 3);

@@ -130,5 +130,15 @@ TEST(Tessellate, BranchKeepsTheSharedEdgeAsOneRowOfVertices) {
   EXPECT_EQ(testing::duplicatePositions(mesh), 0u);
 }
 
+TEST(Tessellate, RefusesMeshesBeyond32BitIndicesBeforeAllocating) {
+  std::mt19937 rng(26);
+  LatticeOptions o;
+  o.rows = 15;
+  o.cols = 20;  // 300 frames × 4095² inner points > 2³² vertices
+  const VertexFrameSurface s = solve(latticeModel(o, rng));
+  EXPECT_THROW(tessellate(s, {4097}), std::length_error);
+  EXPECT_NO_THROW(tessellate(s, {5}));
+}
+
 }  // namespace
 }  // namespace pdesurf
