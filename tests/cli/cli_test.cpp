@@ -688,8 +688,7 @@ TEST_F(CliBuild, SummaryUsesTheFileNameWithoutAModelName) {
   const CliRun r = run("build " + quote(model) + " -o " + quote(path("flat.stl")));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(
-      r.out.rfind("flat.json: 1 frame, 2 strips, 289 vertices, 512 triangles, C0 gap 0 -> ", 0),
-      0u)
+      r.out.rfind("flat.json: 1 frame, 2 strips, 289 vertices, 512 triangles, C0 gap 0 -> ", 0), 0u)
       << r.out;
 }
 
