@@ -1,6 +1,7 @@
 // pdesurf: the command line. Thin: parse arguments, call the library, report.
 // Exit codes: 0 success, 1 bad input (model or mesh file), 2 usage error.
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -171,6 +172,9 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Past a file-size limit, a write should fail (and the temporary file go) rather than
+  // the process be killed mid-write.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "pdesurf: PDE-based surface modelling from vertex-frames.\n"
       "Exit status: 0 success, 1 invalid input file, 2 usage error."};

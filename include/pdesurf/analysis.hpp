@@ -34,7 +34,10 @@ struct C0Report {
 /// runs it and measures the distance to the first side's point at the same place.
 C0Report measureC0Gap(const VertexFrameSurface& surface, std::uint32_t samples = 65);
 
-/// Bounds of the surface sampled on a samples × samples grid per patch.
+/// Bounds of the surface: every patch sampled on a samples × samples grid and every force
+/// region on a grid of its own, then the most extreme points refined by a local search to
+/// about 1e-12 in parameter. Exact up to that refinement unless a patch hides an extreme
+/// narrower than the sampling in a place no sample reaches (not a certified bound).
 Bounds surfaceBounds(const VertexFrameSurface& surface, std::uint32_t samples = 17);
 
 /// The model's storage in bytes under the seed's Table 1 convention: every number written

@@ -9,6 +9,12 @@
 
 namespace pdesurf {
 
+/// A force has no particular solution when a1/Lu² + a2/Lv² vanishes; it counts as vanishing
+/// when it is below this fraction of |a1|/Lu² + |a2|/Lv². Rounding in Lu = u1 - u0 and the
+/// divisions leaves a few 1e-16 of that sum where the exact value is 0; a real value this
+/// small would displace the surface by 1e12 × f0, which no model means.
+constexpr double kForceSolvabilityTolerance = 1e-12;
+
 /// A model file is malformed or invalid. what() reads "FILE: $.json.path: what is wrong".
 class ModelError : public std::runtime_error {
  public:

@@ -1,4 +1,8 @@
 // Continuity, bounds and storage measurements.
+#include <algorithm>
+#include <array>
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "pdesurf/analysis.hpp"
@@ -31,14 +35,93 @@ C0Report measureC0Gap(const VertexFrameSurface& surface, std::uint32_t samples) 
   return report;
 }
 
+namespace {
+
+/// Maximises sign·S_c on the unit square from (u, v) by compass search with halving steps:
+/// the refinement of a sampled extreme (S is smooth inside force regions and C0 across
+/// their borders, so a derivative-free search is the robust choice).
+double refineExtreme(const VertexFramePatch& patch, int c, double sign, double u, double v,
+                     double step) {
+  auto f = [&](double x, double y) { return sign * patch.position(x, y)[c]; };
+  double best = f(u, v);
+  constexpr double kStepFloor = 1e-12;  // parameter resolution of the search
+  constexpr int kDirections[8][2] = {{1, 0}, {-1, 0}, {0, 1},  {0, -1},
+                                     {1, 1}, {1, -1}, {-1, 1}, {-1, -1}};
+  while (step > kStepFloor) {
+    bool moved = false;
+    for (const auto& d : kDirections) {
+      const double x = std::clamp(u + d[0] * step, 0.0, 1.0);
+      const double y = std::clamp(v + d[1] * step, 0.0, 1.0);
+      const double value = f(x, y);
+      if (value > best) {
+        best = value;
+        u = x;
+        v = y;
+        moved = true;
+      }
+    }
+    if (!moved) step *= 0.5;
+  }
+  return sign * best;
+}
+
+}  // namespace
+
 Bounds surfaceBounds(const VertexFrameSurface& surface, std::uint32_t samples) {
-  Bounds b;
   samples = std::max<std::uint32_t>(samples, 2);
-  for (const VertexFramePatch& patch : surface.patches)
+  // 1. Sample every patch on a grid, and every force region on a grid of its own (a
+  //    narrow force can lie between the patch's samples); keep each patch's extremes.
+  struct Extreme {
+    double value, u, v;
+    std::uint32_t patch;
+  };
+  std::array<std::vector<Extreme>, 6> extremes;  // (component, min|max)
+  constexpr std::uint32_t kRegionSamples = 9;
+  for (std::uint32_t k = 0; k < surface.patches.size(); ++k) {
+    const VertexFramePatch& patch = surface.patches[k];
+    std::array<Extreme, 6> best;
+    for (int e = 0; e < 6; ++e)
+      best[e] = {e % 2 ? -std::numeric_limits<double>::infinity()
+                       : std::numeric_limits<double>::infinity(),
+                 0, 0, k};
+    auto visit = [&](double u, double v) {
+      const Vec3 p = patch.position(u, v);
+      for (int c = 0; c < 3; ++c) {
+        if (p[c] < best[2 * c].value) best[2 * c] = {p[c], u, v, k};
+        if (p[c] > best[2 * c + 1].value) best[2 * c + 1] = {p[c], u, v, k};
+      }
+    };
     for (std::uint32_t j = 0; j < samples; ++j)
       for (std::uint32_t i = 0; i < samples; ++i)
-        b.add(patch.position(static_cast<double>(i) / (samples - 1),
-                             static_cast<double>(j) / (samples - 1)));
+        visit(static_cast<double>(i) / (samples - 1), static_cast<double>(j) / (samples - 1));
+    for (const ForceTerm& f : patch.forces)
+      for (std::uint32_t j = 0; j < kRegionSamples; ++j)
+        for (std::uint32_t i = 0; i < kRegionSamples; ++i)
+          visit(f.region.u0 + (f.region.u1 - f.region.u0) * i / (kRegionSamples - 1),
+                f.region.v0 + (f.region.v1 - f.region.v0) * j / (kRegionSamples - 1));
+    for (int e = 0; e < 6; ++e) extremes[e].push_back(best[e]);
+  }
+  // 2. Refine the few most extreme patches of each of the six directions.
+  constexpr std::size_t kRefined = 8;
+  Bounds b;
+  for (int e = 0; e < 6; ++e) {
+    const int c = e / 2;
+    const double sign = e % 2 ? 1.0 : -1.0;
+    auto& list = extremes[e];
+    const std::size_t keep = std::min(kRefined, list.size());
+    std::partial_sort(
+        list.begin(), list.begin() + static_cast<std::ptrdiff_t>(keep), list.end(),
+        [&](const Extreme& x, const Extreme& y) { return sign * x.value > sign * y.value; });
+    for (std::size_t i = 0; i < keep; ++i) {
+      const Extreme& x = list[i];
+      const double value =
+          refineExtreme(surface.patches[x.patch], c, sign, x.u, x.v, 1.0 / (samples - 1));
+      if (sign < 0)
+        b.min[c] = std::min(b.min[c], value);
+      else
+        b.max[c] = std::max(b.max[c], value);
+    }
+  }
   return b;
 }
 

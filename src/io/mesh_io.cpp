@@ -88,6 +88,15 @@ void validateForWriting(const Mesh& mesh, const std::string& path) {
     fail(path, "invalid mesh: {} indices is not a multiple of 3", mesh.indices.size());
   if (mesh.vertexCount() > std::numeric_limits<std::uint32_t>::max())
     fail(path, "invalid mesh: {} vertices do not fit 32-bit indices", mesh.vertexCount());
+  // Every format stores single-precision numbers; an infinite or NaN one would make a file
+  // other programs reject or misdraw (a surface beyond ±3.4e38 overflows float).
+  for (const auto* buffer : {&mesh.positions, &mesh.normals})
+    for (std::size_t i = 0; i < buffer->size(); ++i)
+      if (!std::isfinite((*buffer)[i]))
+        fail(path,
+             "invalid mesh: vertex {} has a non-finite {} ({}): coordinates must fit single "
+             "precision (|x| < 3.4e38)",
+             i / 3, buffer == &mesh.positions ? "position" : "normal", (*buffer)[i]);
   const std::size_t vertexCount = mesh.vertexCount();
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= vertexCount)

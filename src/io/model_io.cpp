@@ -208,15 +208,25 @@ class Reader {
   /// An index into a list of `count` things called `what` (plural `whats`).
   std::uint32_t index(const Json& j, const std::string& path, std::size_t count, const char* what,
                       const char* whats) const {
+    if (j.is_number_float()) {
+      const double d = j.get<double>();
+      fail(path, std::trunc(d) == d
+                     ? fmt::format("expected an integer {} index, found {} (written with a "
+                                   "fraction or exponent, or beyond 64-bit integers)",
+                                   what, j.dump())
+                     : fmt::format("expected an integer {} index, found a fractional number {}",
+                                   what, j.dump()));
+    }
     if (!j.is_number_integer())
-      fail(path, fmt::format("expected an integer {} index, found {}", what,
-                             j.is_number() ? "a fractional number" : typeName(j)));
-    // nlohmann keeps non-negative integers unsigned: read them so (2^64 - 1 is not -1).
-    if (!j.is_number_unsigned() || j.get<std::uint64_t>() >= count)
+      fail(path, fmt::format("expected an integer {} index, found {}", what, typeName(j)));
+    // nlohmann keeps non-negative integers unsigned (2^64 - 1 is not -1); "-0" is signed 0.
+    const bool negative = !j.is_number_unsigned() && j.get<std::int64_t>() < 0;
+    const std::uint64_t value = negative ? 0 : j.get<std::uint64_t>();
+    if (negative || value >= count)
       fail(path,
            fmt::format("{} index {} is out of range (the model has {} {}, indices 0 to {})", what,
                        j.dump(), count, count == 1 ? what : whats, count == 0 ? 0 : count - 1));
-    return static_cast<std::uint32_t>(j.get<std::uint64_t>());
+    return static_cast<std::uint32_t>(value);
   }
 
   Region region(const Json& j, const std::string& path) const {
@@ -237,13 +247,16 @@ class Reader {
     const double lu = r.u1 - r.u0, lv = r.v1 - r.v0;
     for (int c = 0; c < 3; ++c) {
       if (f0[c] == 0.0) continue;
-      const double den = f.a1[c] / (lu * lu) + f.a2[c] / (lv * lv);
-      if (den == 0.0 || !std::isfinite(den))
+      const double t1 = f.a1[c] / (lu * lu), t2 = f.a2[c] / (lv * lv);
+      const double den = t1 + t2;
+      const bool zero = std::isfinite(den) &&
+                        std::abs(den) <= kForceSolvabilityTolerance * (std::abs(t1) + std::abs(t2));
+      if (zero || !std::isfinite(den))
         fail(path, fmt::format("on frame {}, a1.{}/Lu² + a2.{}/Lv² is {} (a1.{} = {}, a2.{} = {}, "
                                "Lu = {}, Lv = {}), so the force component f0.{} = {} has no "
                                "solution: change {}",
                                frame, kComponents[c], kComponents[c],
-                               den == 0.0 ? "0" : "not finite", kComponents[c], f.a1[c],
+                               zero ? "0 (to rounding)" : "not finite", kComponents[c], f.a1[c],
                                kComponents[c], f.a2[c], lu, lv, kComponents[c], f0[c],
                                wholeFrame ? fmt::format("a1 or a2 of frames[{}]", frame)
                                           : std::string("a1, a2 or the region")));

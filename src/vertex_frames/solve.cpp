@@ -42,10 +42,13 @@ Vec3 minimiser(const Vec3& a, const Vec3& b) {
 }
 
 /// The PDE residual's part along (6u-3) is a1 C3 + a2 C9/3, along (6v-3) it is
-/// a2 C6 + a1 C8/3 (math-notes §1). Returns (a, b) with that part = a ⊙ cubic + b.
-std::array<Vec3, 2> residualTerm(const Frame& f, const CrossTerms& t, int direction) {
-  if (direction == 0) return {f.a1, (f.a2.array() * t.c9.array()).matrix() / 3.0};
-  return {f.a2, (f.a1.array() * t.c8.array()).matrix() / 3.0};
+/// a2 C6 + a1 C8/3 (math-notes §1); one patch alone zeroes it with
+/// C3 = -(a2/a1) C9/3, C6 = -(a1/a2) C8/3 (ratio first: no overflow for large a1, a2).
+/// Arguments: (a1, a2, C9) for C3, (a2, a1, C8) for C6.
+Vec3 ownCubic(const Vec3& a, const Vec3& other, const Vec3& cross) {
+  Vec3 x;
+  for (int c = 0; c < 3; ++c) x[c] = a[c] != 0.0 ? -(other[c] / a[c]) * cross[c] / 3.0 : 0.0;
+  return x;
 }
 
 }  // namespace
@@ -70,8 +73,7 @@ std::array<Vec3, 10> patchCoefficients(const std::array<Vec3, 8>& p, const Vec3&
 std::array<Vec3, 2> singlePatchCubics(const std::array<Vec3, 8>& p, const Vec3& a1,
                                       const Vec3& a2) {
   const CrossTerms t = crossTerms(p);
-  return {minimiser(a1, (a2.array() * t.c9.array()).matrix() / 3.0),
-          minimiser(a2, (a1.array() * t.c8.array()).matrix() / 3.0)};
+  return {ownCubic(a1, a2, t.c9), ownCubic(a2, a1, t.c8)};
 }
 
 namespace {
@@ -157,13 +159,29 @@ VertexFrameSurface solve(const VertexFrameModel& model,
   std::size_t freeStrips = 0;
   if (options.solver == Solver::Global) {
     // X = -Σ s a b / Σ a² over the strip's patches: the minimiser of its summed residual.
+    // Both sums are formed with a and b divided by the strip's largest |a| (per
+    // component), so that neither overflows nor underflows for any finite a1, a2.
+    std::vector<Vec3> scale(topo.stripCount, Vec3::Zero());
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (int d = 0; d < 2; ++d) {
+        const Vec3& a = d == 0 ? model.frames[k].a1 : model.frames[k].a2;
+        scale[topo.strip[k][d]] = scale[topo.strip[k][d]].cwiseMax(a.cwiseAbs());
+      }
     std::vector<Vec3> num(topo.stripCount, Vec3::Zero()), den(topo.stripCount, Vec3::Zero());
     for (std::uint32_t k = 0; k < nFrames; ++k) {
       for (int d = 0; d < 2; ++d) {
-        const auto [a, b] = residualTerm(model.frames[k], cross[k], d);
+        const Frame& f = model.frames[k];
         const std::uint32_t s = topo.strip[k][d];
-        num[s] += topo.parity[k][d] * (a.array() * b.array()).matrix();
-        den[s] += a.cwiseAbs2();
+        const Vec3& a = d == 0 ? f.a1 : f.a2;
+        const Vec3& other = d == 0 ? f.a2 : f.a1;
+        const Vec3& cross3 = d == 0 ? cross[k].c9 : cross[k].c8;
+        for (int c = 0; c < 3; ++c) {
+          if (scale[s][c] == 0.0) continue;
+          const double as = a[c] / scale[s][c];
+          const double bs = other[c] / scale[s][c] * cross3[c] / 3.0;
+          num[s][c] += topo.parity[k][d] * as * bs;
+          den[s][c] += as * as;
+        }
       }
     }
     for (std::uint32_t s = 0; s < topo.stripCount; ++s) {
@@ -182,8 +200,10 @@ VertexFrameSurface solve(const VertexFrameModel& model,
         if (set[s]) continue;
         set[s] = 1;
         if (topo.stripPinned[s]) continue;
-        const auto [a, b] = residualTerm(model.frames[k], cross[k], d);
-        values[s] = topo.parity[k][d] * minimiser(a, b);
+        const Frame& f = model.frames[k];
+        const Vec3& a = d == 0 ? f.a1 : f.a2;
+        values[s] = topo.parity[k][d] * (d == 0 ? ownCubic(f.a1, f.a2, cross[k].c9)
+                                                : ownCubic(f.a2, f.a1, cross[k].c8));
         if ((a.array() == 0.0).any()) ++freeStrips;
       }
     };

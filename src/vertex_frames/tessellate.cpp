@@ -31,6 +31,8 @@ constexpr std::size_t kLanes = 8;
 /// A normal counts as degenerate (a pole, a cusp) when |Su × Sv| is below this fraction of
 /// the patch's squared size: far below any real surface, far above rounding noise (1e-16).
 constexpr double kDegenerateNormalSine = 1e-10;
+/// A summed boundary normal shorter than this (a sum of unit vectors) has cancelled out.
+constexpr float kCancelledNormal = 1e-3f;
 /// Where the normal is degenerate it is taken this far inside the patch, towards its centre.
 constexpr double kNormalInset = 1e-4;
 
@@ -116,7 +118,8 @@ RowPolynomials foldRow(const double (&c)[3][10], double v) {
 template <bool Forces>
 void evaluateRow(const double* __restrict u, std::size_t count, const RowPolynomials& r,
                  const double* __restrict force, std::size_t forceStride, double flip,
-                 float* __restrict pos, float* __restrict nor, double* __restrict cross2) {
+                 double invScale, float* __restrict pos, float* __restrict nor,
+                 double* __restrict cross2) {
   for (std::size_t i = 0; i < count; ++i) {
     const double x = u[i];
     double p[3], du[3], dv[3];
@@ -129,6 +132,12 @@ void evaluateRow(const double* __restrict u, std::size_t count, const RowPolynom
         du[k] += force[(3 + k) * forceStride + i];
         dv[k] += force[(6 + k) * forceStride + i];
       }
+    }
+    // Tangents divided by the patch's size bound: no overflow or underflow in the cross
+    // product for any finite model, and |Su × Sv|² becomes a scale-free sine².
+    for (int k = 0; k < 3; ++k) {
+      du[k] *= invScale;
+      dv[k] *= invScale;
     }
     const double nx = du[1] * dv[2] - du[2] * dv[1];
     const double ny = du[2] * dv[0] - du[0] * dv[2];
@@ -196,6 +205,17 @@ inline void writeQuadRow(const std::uint32_t* __restrict prev, const std::uint32
   }
 }
 
+/// Quad (a b c d) split along b–d instead of a–c.
+inline void writeQuadAlt(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
+                         bool flip, std::uint32_t* o) {
+  o[0] = a;
+  o[1] = flip ? d : b;
+  o[2] = flip ? b : d;
+  o[3] = b;
+  o[4] = flip ? d : c;
+  o[5] = flip ? c : d;
+}
+
 }  // namespace
 
 Mesh tessellate(const VertexFrameSurface& surface, const TessellateOptions& options) {
@@ -225,9 +245,14 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
       for (std::uint32_t v : {topo.edges[e].vertices[0], topo.edges[e].vertices[2]})
         if (cornerId[v] == kNone) cornerId[v] = next++;
   // Indices are 32-bit (as in glTF and GL): refuse meshes that do not fit.
+  // Points inside an edge: none on a collapsed edge; on a loop a→m→a (pinned flat, so
+  // symmetric: S(t) = S(1-t)) only the first half, its mirror image shares them.
+  auto edgeInner = [&](const ModelEdge& e) -> std::uint32_t {
+    if (e.collapsed()) return 0;
+    return e.vertices[0] == e.vertices[2] ? (n - 1) / 2 : inner;
+  };
   std::uint64_t edgePoints = 0;
-  for (const ModelEdge& e : topo.edges)
-    if (!e.collapsed()) edgePoints += inner;
+  for (const ModelEdge& e : topo.edges) edgePoints += edgeInner(e);
   const std::uint64_t vertices64 =
       std::uint64_t{next} + edgePoints + std::uint64_t{nFrames} * inner * inner;
   const std::uint64_t triangles64 = std::uint64_t{nFrames} * (n - 1) * (n - 1) * 2;
@@ -237,11 +262,10 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
         "than 32-bit indices can address: lower the resolution",
         nFrames, n, vertices64, triangles64));
   std::vector<std::uint32_t> edgeBase(topo.edges.size(), kNone);
-  for (std::size_t e = 0; e < topo.edges.size(); ++e)
-    if (!topo.edges[e].collapsed()) {
-      edgeBase[e] = next;
-      next += inner;
-    }
+  for (std::size_t e = 0; e < topo.edges.size(); ++e) {
+    edgeBase[e] = next;
+    next += edgeInner(topo.edges[e]);
+  }
   const std::uint32_t boundaryCount = next;
   const std::uint32_t interiorBase = next;
   const auto vertexCount = static_cast<std::uint32_t>(vertices64);
@@ -254,6 +278,8 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
   std::size_t triangles = 0;
   // Boundary normals are sums over the patches that meet there, normalised at the end.
   std::fill_n(mesh.normals.begin(), std::size_t{boundaryCount} * 3, 0.0f);
+  std::vector<float> firstNormal(std::size_t{boundaryCount} * 3);
+  std::vector<std::uint8_t> hasFirst(boundaryCount, 0);
 
   // The flattened grid: point j·n + i at (t[i], t[j]).
   const std::vector<double> t = gridParams(n);
@@ -273,6 +299,16 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
     double c[3][10];
     for (int comp = 0; comp < 3; ++comp)
       for (int i = 0; i < 10; ++i) c[comp][i] = patch.c[i][comp];
+    // A bound on |Su| and |Sv| over the patch (each monomial's derivative is at most 3 on
+    // the unit square, |x| ≤ 2 max|x_c| in 3D), formed from maxima so it cannot overflow
+    // before the coordinates themselves would.
+    double scale = 0.0;
+    for (int i = 1; i < 10; ++i) scale += 6.0 * patch.c[i].cwiseAbs().maxCoeff();
+    for (const ForceTerm& f : patch.forces)
+      scale += 2.0 * M_PI * f.k.cwiseAbs().maxCoeff() /
+               std::min(f.region.u1 - f.region.u0, f.region.v1 - f.region.v0);
+    const double invScale = scale > 0.0 && std::isfinite(scale) ? 1.0 / scale : 1.0;
+    constexpr double degenerate2 = kDegenerateNormalSine * kDegenerateNormalSine;
     forceTables.resize(patch.forces.size());
     for (std::size_t f = 0; f < patch.forces.size(); ++f) {
       const Region& r = patch.forces[f].region;
@@ -283,44 +319,54 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
       const RowPolynomials rp = foldRow(c, t[j]);
       const std::size_t g = j * np;
       if (!rowForces(patch, forceTables, j, np, forceRow))
-        evaluateRow<false>(tp.data(), np, rp, nullptr, np, flip, pos.data() + 3 * g,
+        evaluateRow<false>(tp.data(), np, rp, nullptr, np, flip, invScale, pos.data() + 3 * g,
                            nor.data() + 3 * g, cross2.data() + g);
       else
-        evaluateRow<true>(tp.data(), np, rp, forceRow.data(), np, flip, pos.data() + 3 * g,
-                          nor.data() + 3 * g, cross2.data() + g);
+        evaluateRow<true>(tp.data(), np, rp, forceRow.data(), np, flip, invScale,
+                          pos.data() + 3 * g, nor.data() + 3 * g, cross2.data() + g);
     }
     const std::uint32_t patchBase = interiorBase + k * inner * inner;
 
     // Mesh ids of the patch's boundary ring, side by side in the side's own direction.
     bool collapsedSide[4];
+    bool repeatsIds = false;  // some boundary points of this patch are one mesh vertex
     for (int s = 0; s < 4; ++s) {
       const std::uint32_t e = topo.edgeOf[k][s];
       const ModelEdge& edge = topo.edges[e];
       const bool rev = topo.sideReversed[k][s] != 0;
+      const bool loop = edge.vertices[0] == edge.vertices[2];
       collapsedSide[s] = edge.collapsed();
+      repeatsIds |= loop;
+      for (int s2 = 0; s2 < s; ++s2) repeatsIds |= topo.edgeOf[k][s2] == e;
       std::uint32_t* ids = ring.data() + s * n;
       ids[0] = cornerId[rev ? edge.vertices[2] : edge.vertices[0]];
       ids[n - 1] = cornerId[rev ? edge.vertices[0] : edge.vertices[2]];
-      for (std::uint32_t q = 1; q + 1 < n; ++q)
-        ids[q] = edge.collapsed() ? ids[0] : edgeBase[e] + (rev ? n - 1 - q : q) - 1;
+      for (std::uint32_t q = 1; q + 1 < n; ++q) {
+        if (edge.collapsed())
+          ids[q] = ids[0];
+        else if (loop)
+          ids[q] = edgeBase[e] + std::min(q, n - 1 - q) - 1;
+        else
+          ids[q] = edgeBase[e] + (rev ? n - 1 - q : q) - 1;
+      }
     }
     const bool anyCollapsed =
         collapsedSide[0] || collapsedSide[1] || collapsedSide[2] || collapsedSide[3];
+    {
+      const std::uint32_t corners[4] = {ring[0], ring[n - 1], ring[2 * n + n - 1], ring[2 * n]};
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < a; ++b) repeatsIds |= corners[a] == corners[b];
+    }
+    repeatsIds |= anyCollapsed;
 
-    // Degenerate normals. |Su|, |Sv| ≤ scale everywhere on the patch, so a normal is
-    // degenerate when |Su × Sv| < kDegenerateNormalSine · scale² (rounding noise at a pole,
-    // a cusp). Points on a collapsed side are a pole whatever rounding says. There the
-    // normal is taken from just inside the patch.
-    double scale = 0.0;
-    for (int i = 1; i < 10; ++i) scale += 3.0 * patch.c[i].norm();
-    for (const ForceTerm& f : patch.forces)
-      scale += M_PI * f.k.norm() / std::min(f.region.u1 - f.region.u0, f.region.v1 - f.region.v0);
-    const double degenerate2 = std::pow(kDegenerateNormalSine * scale * scale, 2);
+    // Degenerate normals: |Su × Sv| < kDegenerateNormalSine · scale² (rounding noise at a
+    // pole, a cusp). Points on a collapsed side are a pole whatever rounding says. There
+    // the normal is taken from just inside the patch.
     auto insetNormal = [&](std::size_t i, std::size_t j) {
       const double uu = t[i] + kNormalInset * (0.5 - t[i]);
       const double vv = t[j] + kNormalInset * (0.5 - t[j]);
       const SurfacePoint sp = patch.evaluate(uu, vv);
-      Vec3 nrm = sp.du.cross(sp.dv);
+      Vec3 nrm = (sp.du * invScale).cross(sp.dv * invScale);
       const double nl = nrm.norm();
       nrm = nl > 0.0 ? Vec3(flip * nrm / nl) : Vec3::Zero();
       for (int comp = 0; comp < 3; ++comp)
@@ -361,7 +407,7 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
         const std::uint32_t base = patchBase + (j - 1) * inner - 1;
         // Rows next to Alpha or Beta (and all rows of small or pole patches) take the
         // generic quad writer, which reads the whole row; the pattern writer needs 4 ids.
-        const bool fullRow = j == 1 || j + 2 == n || anyCollapsed || n < 4;
+        const bool fullRow = j == 1 || j + 2 == n || repeatsIds || n < 4;
         if (fullRow) {
           for (std::uint32_t i = 1; i + 1 < n; ++i) rowIds[i] = base + i;
         } else {
@@ -371,6 +417,10 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
       }
       auto storeBoundary = [&](std::uint32_t i) {
         const std::size_t o = std::size_t{rowIds[i]} * 3, g = (j * np + i) * 3;
+        if (!hasFirst[rowIds[i]]) {
+          hasFirst[rowIds[i]] = 1;
+          std::copy_n(nor.data() + g, 3, firstNormal.data() + o);
+        }
         for (int comp = 0; comp < 3; ++comp) {
           mesh.positions[o + comp] = pos[g + comp];
           mesh.normals[o + comp] += nor[g + comp];
@@ -387,31 +437,37 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
       if (j == 0) continue;
       std::uint32_t* out = mesh.indices.data() + triangles * 3;
       std::uint32_t* outPatch = mesh.patchIds.data() + triangles;
-      if (!anyCollapsed) {  // no repeated ids: every quad gives two triangles
-        auto quadRow = [flipped = flip < 0](const std::uint32_t* a, const std::uint32_t* b,
-                                            std::size_t quads, std::uint32_t* o) {
-          if (flipped)
-            writeQuadRow<true>(a, b, quads, o);
-          else
-            writeQuadRow<false>(a, b, quads, o);
-        };
+      // The quads at corners (1,0) and (0,1) are split through the corner, so that no
+      // triangle is made of boundary points alone: two frames that share both sides at a
+      // corner (a pillow) would otherwise emit the same triangle twice.
+      const std::uint32_t altQuad = n < 3 ? n : (j == 1 ? n - 2 : (j + 1 == n ? 0 : n));
+      auto quadAt = [&](std::uint32_t i, std::uint32_t* o) {
+        if (i == altQuad)
+          writeQuadAlt(prevIds[i], prevIds[i + 1], rowIds[i + 1], rowIds[i], flip < 0, o);
+        else if (flip < 0)
+          writeQuadRow<true>(prevIds + i, rowIds + i, 1, o);
+        else
+          writeQuadRow<false>(prevIds + i, rowIds + i, 1, o);
+      };
+      if (!repeatsIds) {  // no repeated ids: every quad gives two triangles
         if (j >= 2 && j + 2 <= n && n >= 4) {
           // Boundary quads at both ends, the patch-interior quads between them by pattern.
-          quadRow(prevIds, rowIds, 1, out);
+          quadAt(0, out);
           writeInteriorQuads(prevIds[1], n - 3, flip < 0 ? patternFlip : pattern, out + 6);
-          quadRow(prevIds + n - 2, rowIds + n - 2, 1, out + 6 * (n - 2));
+          quadAt(n - 2, out + 6 * (n - 2));
         } else {
-          quadRow(prevIds, rowIds, n - 1, out);
+          if (flip < 0)
+            writeQuadRow<true>(prevIds, rowIds, n - 1, out);
+          else
+            writeQuadRow<false>(prevIds, rowIds, n - 1, out);
+          if (altQuad < n) quadAt(altQuad, out + 6 * altQuad);
         }
         std::fill_n(outPatch, 2 * (n - 1), k);
         outPatch += 2 * (n - 1);
       } else {
         for (std::uint32_t i = 0; i + 1 < n; ++i) {
           std::uint32_t quad[6];
-          if (flip < 0)
-            writeQuadRow<true>(prevIds + i, rowIds + i, 1, quad);
-          else
-            writeQuadRow<false>(prevIds + i, rowIds + i, 1, quad);
+          quadAt(i, quad);
           for (const std::uint32_t* tri : {quad, quad + 3}) {
             if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
             std::copy_n(tri, 3, out);
@@ -429,8 +485,13 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
   for (std::uint32_t v = 0; v < boundaryCount; ++v) {
     float* nv = mesh.normals.data() + std::size_t{v} * 3;
     const float len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
-    const float inv = len > 0.0f ? 1.0f / len : 0.0f;
-    for (int comp = 0; comp < 3; ++comp) nv[comp] *= inv;
+    if (len > kCancelledNormal) {
+      for (int comp = 0; comp < 3; ++comp) nv[comp] /= len;
+    } else {
+      // The patches' normals cancel (the rim of a pillow, a fin folded back): no average
+      // direction exists, so the first patch's normal stands for all.
+      std::copy_n(firstNormal.data() + std::size_t{v} * 3, 3, nv);
+    }
   }
 }
 

@@ -351,6 +351,14 @@ TEST(MeshIoWrite, InvalidMeshThrowsAndLeavesNothing) {
   mesh = makeCubeSphere(2);
   mesh.normals.pop_back();
   EXPECT_TRUE(contains(errorOf([&] { writeMesh(mesh, dir.file("bad.obj")); }), "bad.obj"));
+  mesh = makeCubeSphere(2);
+  mesh.positions[4] = std::numeric_limits<float>::infinity();  // vertex 1, y
+  EXPECT_TRUE(contains(errorOf([&] { writeMesh(mesh, dir.file("inf.glb")); }),
+                       "vertex 1 has a non-finite position"));
+  mesh = makeCubeSphere(2);
+  mesh.normals[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(
+      contains(errorOf([&] { writeMesh(mesh, dir.file("nan.stl")); }), "non-finite normal"));
   EXPECT_TRUE(dir.entries().empty());
 }
 

@@ -568,6 +568,20 @@ TEST(ModelIoErrors, ForceOnARegionTooThinForADouble) {
   EXPECT_NO_THROW(parseVertexFrameModel(doc.dump(), kFile));
 }
 
+TEST(ModelIoErrors, ForceWhoseDenominatorIsZeroOnlyUpToRounding) {
+  // 0.09/0.3² - 1/1² is 0 exactly, but Lu = 0.4 - 0.1 rounds to 0.30000000000000004 and the
+  // sum to -3.3e-16: without a relative tolerance the force would displace the surface by
+  // about 1e15.
+  Json doc = twoFrames();
+  doc["frames"][0]["a1"] = {1, 1, 0.09};
+  doc["frames"][0]["a2"] = {1, 1, -1};
+  doc["frames"][0]["forces"] = Json::parse(R"([{"f0": [0, 0, 1], "region": [0.1, 0.4, 0, 1]}])");
+  expectDocError(doc, "$.frames[0].forces[0]", {"a1.z/Lu² + a2.z/Lv² is 0 (to rounding)"});
+  // A denominator that is merely small relative to its terms still passes.
+  doc["frames"][0]["a1"] = {1, 1, 0.0900001};
+  EXPECT_NO_THROW(parseVertexFrameModel(doc.dump(), kFile));
+}
+
 // ---------------------------------------------------------------------------------------
 // Writing.
 

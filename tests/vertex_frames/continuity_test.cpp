@@ -198,6 +198,36 @@ TEST(GlobalSolver, DoesNotDependOnFrameOrder) {
       EXPECT_LT((a.patches[k].c[i] - b.patches[n - 1 - k].c[i]).norm(), 1e-12);
 }
 
+/// Scaling a1 and a2 together does not change the PDE's solution; the solvers must not
+/// overflow or underflow on the way (a1 = a2 = 1e155 squared is infinite, 1e-170 is 0).
+TEST(Solvers, AreInvariantToScalingA1AndA2TogetherOverTheWholeDoubleRange) {
+  std::mt19937 rng(19);
+  LatticeOptions o;
+  o.rows = 3;
+  o.cols = 4;
+  o.closedU = true;
+  o.randomOrientation = true;
+  o.noise = 0.2;
+  o.randomParameters = true;
+  const VertexFrameModel m = latticeModel(o, rng);
+  for (Solver solver : {Solver::Global, Solver::Local}) {
+    const VertexFrameSurface reference = solve(m, {solver, 0});
+    for (double scale : {1e155, 1e-170, 1e300, 1e-300}) {
+      VertexFrameModel scaled = m;
+      for (Frame& f : scaled.frames) {
+        f.a1 *= scale;
+        f.a2 *= scale;
+      }
+      const VertexFrameSurface s = solve(scaled, {solver, 0});
+      EXPECT_TRUE(s.notes.empty()) << scale;
+      for (std::size_t k = 0; k < m.frames.size(); ++k)
+        for (int i = 0; i < 10; ++i)
+          EXPECT_LT((s.patches[k].c[i] - reference.patches[k].c[i]).norm(), 1e-12)
+              << "scale " << scale << " frame " << k;
+    }
+  }
+}
+
 /// The seed's patch generation rule (§3.2.1) on a 3×3 model: the centre patch solves its
 /// own least squares; each edge patch inherits one cubic from the centre and solves the
 /// other; the corner patches solve nothing and inherit both from the edge patches.

@@ -130,6 +130,77 @@ TEST(Tessellate, BranchKeepsTheSharedEdgeAsOneRowOfVertices) {
   EXPECT_EQ(testing::duplicatePositions(mesh), 0u);
 }
 
+/// Two frames over the same eight vertices, one mirrored: a closed pillow. Both frames
+/// share both sides at every corner; no triangle may appear twice.
+TEST(Tessellate, PillowOfTwoFramesIsAClosedOrientedSphere) {
+  VertexFrameModel m;
+  m.vertices = {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {1, 0.5, 0},
+                {1, 1, 0}, {0.5, 1, 0}, {0, 1, 0}, {0, 0.5, 0}};
+  Frame top, bottom;
+  top.vertices = {0, 1, 2, 3, 4, 5, 6, 7};
+  top.forces.push_back({Vec3(0, 0, 10), Region{}});
+  bottom.vertices = {0, 7, 6, 5, 4, 3, 2, 1};
+  bottom.forces.push_back({Vec3(0, 0, -10), Region{}});
+  m.frames = {top, bottom};
+  for (std::uint32_t n : {3u, 4u, 7u, 16u}) {
+    const Mesh mesh = tessellate(solve(m), {n});
+    const auto stats = testing::edgeStats(mesh);
+    EXPECT_EQ(stats.boundaryEdges, 0u) << n;
+    EXPECT_EQ(stats.nonManifoldEdges, 0u) << n;
+    EXPECT_EQ(stats.inconsistentlyOrientedEdges, 0u) << n;
+    const long long chi = static_cast<long long>(mesh.vertexCount()) -
+                          static_cast<long long>(stats.edges) +
+                          static_cast<long long>(mesh.triangleCount());
+    EXPECT_EQ(chi, 2) << n;
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+      const Eigen::Vector3f nv(mesh.normals[3 * v], mesh.normals[3 * v + 1],
+                               mesh.normals[3 * v + 2]);
+      EXPECT_NEAR(nv.norm(), 1.0f, 1e-5f) << "vertex " << v << " at resolution " << n;
+    }
+  }
+}
+
+/// A side running a→m→a (a loop) is pinned flat, so its two halves coincide: they are one
+/// row of vertices, and no triangle repeats a vertex.
+TEST(Tessellate, LoopSideIsFoldedOntoItself) {
+  VertexFrameModel m;
+  m.vertices = {{0, 0, 0},     {1, 0, 0},        {1.2, 1, 0.3}, {0.6, 1.4, 0.2},
+                {0, 1.5, 0.4}, {-0.6, 1.4, 0.2}, {-1.2, 1, 0.3}};
+  Frame f;
+  f.vertices = {0, 1, 0, 6, 5, 4, 3, 2};  // α = 0→1→0
+  m.frames = {f};
+  for (std::uint32_t n : {2u, 3u, 6u, 7u}) {
+    const Mesh mesh = tessellate(solve(m), {n});
+    EXPECT_EQ(testing::duplicatePositions(mesh), 0u) << n;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const std::uint32_t* tri = mesh.indices.data() + 3 * t;
+      EXPECT_TRUE(tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]) << n;
+    }
+    // Every vertex is used by some triangle (no orphans from the folded half).
+    std::vector<int> used(mesh.vertexCount(), 0);
+    for (std::uint32_t i : mesh.indices) used[i] = 1;
+    EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0) << n;
+  }
+}
+
+TEST(Tessellate, NormalsStayUnitForModelsOfAnyScale) {
+  std::mt19937 rng(27);
+  LatticeOptions o;
+  o.rows = 3;
+  o.cols = 4;
+  o.closedU = true;
+  o.randomOrientation = true;
+  VertexFrameModel m = testing::latticeModel(o, rng);
+  const Mesh reference = tessellate(solve(m), {6});
+  for (double scale : {1e30, 1e-30, 1e150}) {
+    VertexFrameModel scaled = m;
+    for (Vec3& v : scaled.vertices) v *= scale;
+    const Mesh mesh = tessellate(solve(scaled), {6});
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i)
+      EXPECT_NEAR(mesh.normals[i], reference.normals[i], 1e-5f) << "scale " << scale;
+  }
+}
+
 TEST(Tessellate, RefusesMeshesBeyond32BitIndicesBeforeAllocating) {
   std::mt19937 rng(26);
   LatticeOptions o;
