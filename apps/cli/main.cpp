@@ -136,6 +136,7 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
   std::size_t pinned = 0;
   for (auto p : surface.topology->stripPinned) pinned += p;
   const std::size_t storage = storageBytes(model);
+  const std::size_t coincident = coincidentVertices(model);
   if (json) {
     nlohmann::json j = {
         {"model", modelPath},
@@ -152,6 +153,7 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
         {"bbox",
          {{"min", {b.min.x(), b.min.y(), b.min.z()}}, {"max", {b.max.x(), b.max.y(), b.max.z()}}}},
         {"storage_bytes", storage},
+        {"coincident_vertices", coincident},
         {"solver", args.solver},
         {"notes", surface.notes}};
     std::cout << j.dump(2) << '\n';
@@ -166,6 +168,11 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
              b.max.x(), b.max.y(), b.max.z());
   fmt::print("storage    {} bytes (numbers to six significant digits)\n", storage);
   if (!surface.topology->orientable) fmt::print("orientable no\n");
+  if (coincident > 0)
+    fmt::print(
+        "warning    {} {} where another vertex stands, under another index: frames "
+        "meet only through shared indices, so the surface may have cracks there\n",
+        coincident, coincident == 1 ? "vertex stands" : "vertices stand");
   return 0;
 }
 

@@ -40,6 +40,10 @@ C0Report measureC0Gap(const VertexFrameSurface& surface, std::uint32_t samples =
 /// narrower than the sampling in a place no sample reaches (not a certified bound).
 Bounds surfaceBounds(const VertexFrameSurface& surface, std::uint32_t samples = 17);
 
+/// How many vertices that frames use stand exactly where another used vertex stands: frames
+/// join only through shared indices, so such pairs are likely cracks a user meant to close.
+std::size_t coincidentVertices(const VertexFrameModel& model);
+
 /// The model's storage in bytes under the seed's Table 1 convention: every number written
 /// to six significant digits as plain text, one space between numbers and a newline after
 /// each record: a vertex (x y z), a frame (its 8 indices, a1, a2, then f0 and region of

@@ -125,6 +125,25 @@ Bounds surfaceBounds(const VertexFrameSurface& surface, std::uint32_t samples) {
   return b;
 }
 
+std::size_t coincidentVertices(const VertexFrameModel& model) {
+  std::vector<std::uint8_t> used(model.vertices.size(), 0);
+  for (const Frame& f : model.frames)
+    for (std::uint32_t v : f.vertices) used[v] = 1;
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t v = 0; v < used.size(); ++v)
+    if (used[v]) order.push_back(v);
+  auto key = [&](std::uint32_t v) {
+    const Vec3& p = model.vertices[v];
+    return std::array<double, 3>{p.x(), p.y(), p.z()};
+  };
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  std::size_t count = 0;
+  for (std::size_t i = 1; i < order.size(); ++i)
+    if (key(order[i]) == key(order[i - 1])) ++count;
+  return count;
+}
+
 std::size_t storageBytes(const VertexFrameModel& model) {
   fmt::memory_buffer out;
   auto num = [&](double x) { fmt::format_to(std::back_inserter(out), "{:.6g} ", x); };
