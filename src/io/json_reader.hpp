@@ -271,6 +271,53 @@ class Reader {
     }
   }
 
+  /// A frame's "forces": an array of {"f0", optional "region"}, each solvable on frame f.
+  std::vector<FrameForce> frameForces(const Json& list, const std::string& path, const Frame& f,
+                                      std::uint32_t frame) const {
+    expectArray(list, path, 0);
+    std::vector<FrameForce> forces;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string fp = fmt::format("{}[{}]", path, i);
+      const Json& jforce = list[i];
+      expectObject(jforce, fp);
+      FrameForce force;
+      force.f0 = vec3(member(jforce, fp, "f0"), fp + ".f0");
+      if (auto r = jforce.find("region"); r != jforce.end())
+        force.region = region(*r, fp + ".region");
+      checkSolvable(f, force.f0, force.region, fp, frame, false);
+      forces.push_back(force);
+    }
+    return forces;
+  }
+
+  /// The top-level "forces": an array of {"f0", "frames"}, frames listed once each, each
+  /// force solvable on each of its frames (with the model's a1, a2 of that frame).
+  std::vector<SharedForce> sharedForces(const Json& list, const std::string& path,
+                                        const VertexFrameModel& model) const {
+    expectArray(list, path, 0);
+    std::vector<SharedForce> forces;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string fp = fmt::format("{}[{}]", path, i);
+      const Json& jforce = list[i];
+      expectObject(jforce, fp);
+      SharedForce force;
+      force.f0 = vec3(member(jforce, fp, "f0"), fp + ".f0");
+      const Json& frames = member(jforce, fp, "frames");
+      expectArray(frames, fp + ".frames", 1);
+      std::vector<std::uint8_t> seen(model.frames.size(), 0);
+      for (std::size_t j = 0; j < frames.size(); ++j) {
+        const std::string ip = fmt::format("{}.frames[{}]", fp, j);
+        const std::uint32_t k = index(frames[j], ip, model.frames.size(), "frame", "frames");
+        if (seen[k]) fail(ip, fmt::format("frame {} is listed twice", k));
+        seen[k] = 1;
+        checkSolvable(model.frames[k], force.f0, Region{}, fp, k, true);
+        force.frames.push_back(k);
+      }
+      forces.push_back(std::move(force));
+    }
+    return forces;
+  }
+
  private:
   std::string source_;
 };

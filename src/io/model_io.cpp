@@ -71,43 +71,12 @@ VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string&
                                model.vertices.size(), "vertex", "vertices");
     if (auto it = jf.find("a1"); it != jf.end()) f.a1 = rd.vec3(*it, path + ".a1");
     if (auto it = jf.find("a2"); it != jf.end()) f.a2 = rd.vec3(*it, path + ".a2");
-    if (auto it = jf.find("forces"); it != jf.end()) {
-      rd.expectArray(*it, path + ".forces", 0);
-      for (std::size_t i = 0; i < it->size(); ++i) {
-        const std::string fp = fmt::format("{}.forces[{}]", path, i);
-        const Json& jforce = (*it)[i];
-        rd.expectObject(jforce, fp);
-        FrameForce force;
-        force.f0 = rd.vec3(rd.member(jforce, fp, "f0"), fp + ".f0");
-        if (auto r = jforce.find("region"); r != jforce.end())
-          force.region = rd.region(*r, fp + ".region");
-        rd.checkSolvable(f, force.f0, force.region, fp, static_cast<std::uint32_t>(k), false);
-        f.forces.push_back(force);
-      }
-    }
+    if (auto it = jf.find("forces"); it != jf.end())
+      f.forces = rd.frameForces(*it, path + ".forces", f, static_cast<std::uint32_t>(k));
   }
 
-  if (auto it = doc.find("forces"); it != doc.end()) {
-    rd.expectArray(*it, "$.forces", 0);
-    for (std::size_t i = 0; i < it->size(); ++i) {
-      const std::string fp = fmt::format("$.forces[{}]", i);
-      const Json& jforce = (*it)[i];
-      rd.expectObject(jforce, fp);
-      SharedForce force;
-      force.f0 = rd.vec3(rd.member(jforce, fp, "f0"), fp + ".f0");
-      const Json& list = rd.member(jforce, fp, "frames");
-      rd.expectArray(list, fp + ".frames", 1);
-      std::set<std::uint32_t> seen;
-      for (std::size_t j = 0; j < list.size(); ++j) {
-        const std::string ip = fmt::format("{}.frames[{}]", fp, j);
-        const std::uint32_t k = rd.index(list[j], ip, model.frames.size(), "frame", "frames");
-        if (!seen.insert(k).second) rd.fail(ip, fmt::format("frame {} is listed twice", k));
-        rd.checkSolvable(model.frames[k], force.f0, Region{}, fp, k, true);
-        force.frames.push_back(k);
-      }
-      model.forces.push_back(std::move(force));
-    }
-  }
+  if (auto it = doc.find("forces"); it != doc.end())
+    model.forces = rd.sharedForces(*it, "$.forces", model);
 
   const FrameTopology topo = buildTopology(model);
   if (topo.error.kind == TopologyError::Kind::MiddleVertexDiffers) {

@@ -86,9 +86,9 @@ bool rowForces(const VertexFramePatch& patch, const std::vector<ForceTables>& ta
 }
 
 /// Row j of a patch folded over its v-powers, per component: S = Σ_i p[i] u^i,
-/// Su = Σ_i du[i] u^i, Sv = Σ_i dv[i] u^i (cubic, quadratic and cubic in u).
+/// Su = Σ_i du[i] u^i, Sv = Σ_i dv[i] u^i (cubic, quadratic and quadratic in u).
 struct RowPolynomials {
-  double p[3][4], du[3][3], dv[3][4];
+  double p[3][4], du[3][3], dv[3][3];
 };
 
 RowPolynomials foldRow(const double (&c)[3][10], double v) {
@@ -106,7 +106,6 @@ RowPolynomials foldRow(const double (&c)[3][10], double v) {
     r.dv[k][0] = a[4] + 2.0 * v * a[5] + 3.0 * v2 * a[6];
     r.dv[k][1] = a[7] + 2.0 * v * a[9];
     r.dv[k][2] = a[8];
-    r.dv[k][3] = 0.0;
   }
   return r;
 }
