@@ -15,6 +15,7 @@
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
+#include "server.hpp"
 
 namespace {
 
@@ -219,6 +220,17 @@ int main(int argc, char** argv) {
   info->add_flag("--json", json, "print JSON");
   solveArgs.add(info);
 
+  pdesurf::studio::StudioOptions studioOptions;
+  CLI::App* studio = app.add_subcommand(
+      "studio", "Serve a model for interactive editing in a browser (until Ctrl-C)");
+  studio->add_option("model", modelPath, "model file (JSON)")->required();
+  studio->add_option("--root", studioOptions.root,
+                     "folder the studio may open and write in (default: the model's folder)");
+  studio->add_option("--port", studioOptions.port, "port to listen on (0: any free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  studio->add_option("--host", studioOptions.host, "address to listen on")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -235,6 +247,7 @@ int main(int argc, char** argv) {
   try {
     if (*build) return runBuild(modelPath, outPath, resolution, solveArgs, quiet);
     if (*sample) return runSample(modelPath, grid, solveArgs);
+    if (*studio) return pdesurf::studio::runStudio(modelPath, studioOptions);
     return runInfo(modelPath, json, solveArgs);
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

@@ -1,0 +1,592 @@
+// The studio server (server.hpp). Every handler takes one lock: edits, solves and file
+// writes are serialised, so the HTTP threads never see a half-applied change.
+#include "server.hpp"
+
+#include <fcntl.h>
+#include <pthread.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "pdesurf/analysis.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model_io.hpp"
+#include "pdesurf/session.hpp"
+// After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers.
+#include <httplib.h>
+
+namespace pdesurf::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kMaxBody = 1 << 20;
+constexpr std::uint32_t kMinResolution = 2, kMaxMeshResolution = 257, kMaxExportResolution = 4097;
+constexpr std::uint32_t kDefaultMeshResolution = 16, kDefaultExportResolution = 33;
+
+/// A request that cannot be served: the status and the message of {"error": ...}.
+struct HttpError {
+  int status;
+  std::string message;
+};
+
+[[noreturn]] void fail(int status, std::string message) { throw HttpError{status, message}; }
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the file", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Writes `data` to `path` whole or not at all: a temporary file beside it, synced, then
+/// renamed over `path`. Keeps the mode of a file it replaces.
+void writeFileAtomically(const fs::path& path, std::string_view data) {
+  std::string temp =
+      (path.parent_path() / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
+  const int fd = ::mkstemp(temp.data());
+  if (fd < 0)
+    throw std::runtime_error(
+        fmt::format("{}: cannot create a temporary file: {}", path.string(), std::strerror(errno)));
+  struct stat st {};
+  const mode_t mode = ::stat(path.c_str(), &st) == 0 ? (st.st_mode & 07777) : 0644;
+  bool ok = ::fchmod(fd, mode) == 0;
+  for (std::size_t done = 0; ok && done < data.size();) {
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      ok = false;
+    else
+      done += static_cast<std::size_t>(n);
+  }
+  int error = ok ? 0 : errno;
+  if (ok && ::fsync(fd) != 0) ok = false, error = errno;
+  if (::close(fd) != 0 && ok) ok = false, error = errno;
+  if (ok && ::rename(temp.c_str(), path.c_str()) != 0) ok = false, error = errno;
+  if (!ok) {
+    ::unlink(temp.c_str());
+    throw std::runtime_error(
+        fmt::format("{}: cannot write: {}", path.string(), std::strerror(error)));
+  }
+}
+
+fs::path autosavePath(const fs::path& model) { return fs::path(model.string() + ".autosave"); }
+
+void sendJson(httplib::Response& res, const Json& body, int status = 200) {
+  res.status = status;
+  res.set_content(body.dump(), "application/json");
+}
+
+/// The request body as a JSON object (400 otherwise).
+Json bodyObject(const httplib::Request& req) {
+  Json doc = Json::parse(req.body, nullptr, false);
+  if (doc.is_discarded()) fail(400, "$: malformed JSON");
+  if (!doc.is_object()) fail(400, fmt::format("$: expected an object, found {}", doc.type_name()));
+  return doc;
+}
+
+std::string stringMember(const Json& doc, const std::string& name) {
+  auto it = doc.find(name);
+  if (it == doc.end()) fail(400, fmt::format("$: missing \"{}\"", name));
+  if (!it->is_string())
+    fail(400, fmt::format("$.{}: expected a string, found {}", name, it->type_name()));
+  return it->get<std::string>();
+}
+
+/// A whole non-negative decimal number in [lo, hi] (400 naming `what` otherwise).
+std::uint32_t parseUint(const std::string& text, std::uint32_t lo, std::uint32_t hi,
+                        const std::string& what) {
+  std::uint32_t value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || value < lo || value > hi)
+    fail(400, fmt::format("{}: expected a whole number from {} to {}, found \"{}\"", what, lo, hi,
+                          text));
+  return value;
+}
+
+constexpr const char* kIndexPage = R"(<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>pdesurf studio</title></head>
+<body>
+<h1>pdesurf studio</h1>
+<p>The studio's web front-end is not built yet. The server's JSON API:</p>
+<ul>
+<li>GET /api/model: the model, its path, revision, undo and redo depths, dirty, recovery</li>
+<li>POST /api/edit (an edit), /api/end-group, /api/undo, /api/redo</li>
+<li>GET /api/mesh?resolution=N&amp;solver=global|local&amp;seed=K: the surface as binary buffers</li>
+<li>GET /api/files; POST /api/open, /api/save, /api/save-as, /api/export {"path": ...}</li>
+<li>POST /api/recover, /api/discard-recovery: the autosave journal</li>
+</ul>
+</body></html>
+)";
+
+}  // namespace
+
+class StudioServer::Impl {
+ public:
+  Impl(const std::string& modelPath, StudioOptions options) : options_(std::move(options)) {
+    std::error_code ec;
+    fs::path model = fs::absolute(modelPath, ec);
+    if (!fs::exists(model, ec) || fs::is_directory(model, ec))
+      throw ModelError(modelPath, "", "cannot open the file for reading");
+    model = fs::canonical(model, ec);
+    const fs::path root = options_.root.empty() ? model.parent_path() : fs::path(options_.root);
+    if (!fs::is_directory(root, ec))
+      throw StudioError(fmt::format("--root {}: not a folder", root.string()));
+    root_ = fs::canonical(root, ec);
+    if (ec) throw StudioError(fmt::format("--root {}: {}", root.string(), ec.message()));
+    if (!inside(model))
+      throw StudioError(
+          fmt::format("{}: the model is outside the root folder {}", modelPath, root_.string()));
+    openModel(model, modelPath);
+    routes();
+  }
+
+  ~Impl() { stop(); }
+
+  int start() {
+    if (thread_.joinable()) return port_;
+    if (options_.port == 0) {
+      port_ = server_.bind_to_any_port(options_.host);
+    } else {
+      port_ = server_.bind_to_port(options_.host, options_.port) ? options_.port : -1;
+    }
+    if (port_ < 0)
+      throw StudioError(fmt::format("cannot listen on {}:{}", options_.host, options_.port));
+    thread_ = std::thread([this] { server_.listen_after_bind(); });
+    // stop() before the server runs would be lost: wait until it does.
+    for (int i = 0; i < 5000 && !server_.is_running(); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return port_;
+  }
+
+  void stop() {
+    if (!thread_.joinable()) return;
+    server_.stop();
+    thread_.join();
+  }
+
+  int port() const { return port_; }
+  std::string url() const { return fmt::format("http://{}:{}/", options_.host, port_); }
+  std::string root() const { return root_.string(); }
+  std::string modelPath() const {
+    std::lock_guard lock(mutex_);
+    return path_.string();
+  }
+
+ private:
+  // ------------------------------------------------------------------------------------
+  // Paths
+
+  bool inside(const fs::path& canonical) const {
+    auto [r, c] = std::mismatch(root_.begin(), root_.end(), canonical.begin(), canonical.end());
+    return r == root_.end();
+  }
+
+  /// A path from a request, resolved against the root; 403 when it leaves the root.
+  fs::path resolve(const std::string& requested) const {
+    if (requested.empty()) fail(400, "$.path: empty path");
+    if (requested.find('\0') != std::string::npos) fail(400, "$.path: contains a NUL character");
+    fs::path p(requested);
+    if (p.is_relative()) p = root_ / p;
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(p, ec);
+    if (ec) fail(400, fmt::format("{}: {}", requested, ec.message()));
+    if (!inside(canonical) || canonical == root_)
+      fail(403, fmt::format("{}: outside the root folder", requested));
+    return canonical;
+  }
+
+  std::string relative(const fs::path& p) const {
+    return p.lexically_relative(root_).generic_string();
+  }
+
+  /// Makes the parent folder of a path inside the root.
+  void makeParent(const fs::path& p) const {
+    std::error_code ec;
+    fs::create_directories(p.parent_path(), ec);
+    if (ec) fail(500, fmt::format("{}: cannot create the folder: {}", relative(p), ec.message()));
+  }
+
+  // ------------------------------------------------------------------------------------
+  // The session
+
+  std::uint64_t revision() const { return base_ + session_->revision(); }
+
+  Json status() const {
+    return {{"revision", revision()},
+            {"undo", session_->undoDepth()},
+            {"redo", session_->redoDepth()},
+            {"dirty", revision() != savedRevision_}};
+  }
+
+  /// Replaces the session with `model`; the revision keeps increasing across sessions.
+  void replaceSession(VertexFrameModel model) {
+    const std::uint64_t next = session_ ? revision() + 1 : 0;
+    session_ = std::make_unique<ModelSession>(std::move(model));
+    base_ = next;
+  }
+
+  /// Loads a model file (throws ModelError, naming it as `source`) and starts a new session.
+  void openModel(const fs::path& path, const std::string& source) {
+    VertexFrameModel model = parseVertexFrameModel(readFile(path), source);
+    const std::string text = serializeVertexFrameModel(model);
+    replaceSession(std::move(model));
+    path_ = path;
+    savedRevision_ = revision();
+    // An autosave that differs from the file holds edits a crash left unsaved.
+    recovery_ = false;
+    std::error_code ec;
+    if (fs::exists(autosavePath(path_), ec)) {
+      try {
+        const VertexFrameModel saved = parseVertexFrameModel(
+            readFile(autosavePath(path_)), autosavePath(path_).filename().string());
+        recovery_ = serializeVertexFrameModel(saved) != text;
+      } catch (const std::exception&) {
+        recovery_ = false;  // an unreadable journal is no recovery
+      }
+    }
+  }
+
+  /// The journal: the current model beside its file after every change. A pending
+  /// recovery is never overwritten (recover or discard it first).
+  void autosave() {
+    if (recovery_) return;
+    try {
+      writeFileAtomically(autosavePath(path_), serializeVertexFrameModel(session_->model()));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
+    }
+  }
+
+  void saveTo(const fs::path& path) {
+    try {
+      writeFileAtomically(path, serializeVertexFrameModel(session_->model()));
+    } catch (const std::exception& e) {
+      fail(500, e.what());
+    }
+    std::error_code ec;
+    fs::remove(autosavePath(path), ec);
+    if (path != path_) fs::remove(autosavePath(path_), ec);
+    path_ = path;
+    savedRevision_ = revision();
+    recovery_ = false;
+  }
+
+  SolveOptions solveOptions(const httplib::Request& req) const {
+    SolveOptions o;
+    if (req.has_param("solver")) {
+      const std::string s = req.get_param_value("solver");
+      if (s == "local")
+        o.solver = Solver::Local;
+      else if (s != "global")
+        fail(400, fmt::format("solver: expected \"global\" or \"local\", found \"{}\"", s));
+    }
+    if (req.has_param("seed")) {
+      const auto frames = static_cast<std::uint32_t>(session_->model().frames.size());
+      o.seedFrame = parseUint(req.get_param_value("seed"), 0, frames - 1, "seed");
+    }
+    return o;
+  }
+
+  // ------------------------------------------------------------------------------------
+  // Routes
+
+  using Handler = std::function<void(const httplib::Request&, httplib::Response&)>;
+
+  /// Locks, and turns HttpError, ModelError and other exceptions into JSON errors.
+  Handler guarded(Handler handler) {
+    return [this, handler](const httplib::Request& req, httplib::Response& res) {
+      try {
+        std::lock_guard lock(mutex_);
+        handler(req, res);
+      } catch (const HttpError& e) {
+        sendJson(res, {{"error", e.message}}, e.status);
+      } catch (const ModelError& e) {
+        sendJson(res, {{"error", e.what()}}, 400);
+      } catch (const std::exception& e) {
+        sendJson(res, {{"error", e.what()}}, 500);
+      }
+    };
+  }
+
+  void routes() {
+    server_.set_payload_max_length(kMaxBody);
+    server_.set_read_timeout(10);
+    server_.set_write_timeout(10);
+    server_.set_error_handler(
+        httplib::Server::HandlerWithResponse([](const httplib::Request&, httplib::Response& res) {
+          if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+          std::string message = fmt::format("HTTP status {}", res.status);
+          if (res.status == 400) message = "bad request";
+          if (res.status == 404) message = "no such route";
+          if (res.status == 405) message = "method not allowed";
+          if (res.status == 413) message = fmt::format("request body over {} bytes", kMaxBody);
+          sendJson(res, {{"error", message}}, res.status);
+          return httplib::Server::HandlerResponse::Handled;
+        }));
+    server_.set_exception_handler(
+        [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+          sendJson(res, {{"error", "internal error"}}, 500);
+        });
+
+    server_.Get("/", [](const httplib::Request&, httplib::Response& res) {
+      res.set_content(kIndexPage, "text/html; charset=utf-8");
+    });
+
+    server_.Get("/api/model", guarded([this](const httplib::Request&, httplib::Response& res) {
+                  Json out = status();
+                  out["path"] = relative(path_);
+                  out["recovery"] = recovery_;
+                  out["model"] = Json::parse(serializeVertexFrameModel(session_->model()));
+                  sendJson(res, out);
+                }));
+
+    server_.Post("/api/edit", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   const GroupedEdit edit = parseEdit(req.body, session_->model());
+                   session_->apply(edit.edit, edit.group);
+                   autosave();
+                   sendJson(res, status());
+                 }));
+
+    server_.Post("/api/end-group", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   session_->endGroup();
+                   sendJson(res, status());
+                 }));
+
+    server_.Post("/api/undo", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   if (!session_->undo()) fail(409, "nothing to undo");
+                   autosave();
+                   sendJson(res, status());
+                 }));
+
+    server_.Post("/api/redo", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   if (!session_->redo()) fail(409, "nothing to redo");
+                   autosave();
+                   sendJson(res, status());
+                 }));
+
+    server_.Get("/api/mesh", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                  std::uint32_t resolution = kDefaultMeshResolution;
+                  if (req.has_param("resolution"))
+                    resolution = parseUint(req.get_param_value("resolution"), kMinResolution,
+                                           kMaxMeshResolution, "resolution");
+                  const SolveOptions options = solveOptions(req);
+                  auto t0 = Clock::now();
+                  const VertexFrameSurface& surface = session_->surface(options);
+                  const double solveMs = msSince(t0);
+                  t0 = Clock::now();
+                  const Mesh mesh = tessellate(surface, {resolution});
+                  const double tessMs = msSince(t0);
+                  const C0Report c0 = measureC0Gap(surface);
+                  sendMesh(res, mesh, revision(), resolution);
+                  res.set_header("X-Solve-Ms", fmt::format("{:.3f}", solveMs));
+                  res.set_header("X-Tessellate-Ms", fmt::format("{:.3f}", tessMs));
+                  res.set_header("X-C0-Gap", fmt::format("{}", c0.maxGap));
+                }));
+
+    server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
+                  std::vector<std::string> files;
+                  std::error_code ec;
+                  fs::recursive_directory_iterator it(
+                      root_, fs::directory_options::skip_permission_denied, ec);
+                  for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+                    if (it->path().extension() == ".json" && it->is_regular_file(ec))
+                      files.push_back(relative(it->path()));
+                  std::sort(files.begin(), files.end());
+                  sendJson(res, {{"files", files}});
+                }));
+
+    server_.Post("/api/open", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   const std::string requested = stringMember(bodyObject(req), "path");
+                   const fs::path path = resolve(requested);
+                   std::error_code ec;
+                   if (!fs::exists(path, ec)) fail(404, fmt::format("{}: no such file", requested));
+                   if (!fs::is_regular_file(path, ec))
+                     fail(400, fmt::format("{}: not a file", requested));
+                   openModel(path, relative(path));
+                   Json out = status();
+                   out["path"] = relative(path_);
+                   out["recovery"] = recovery_;
+                   sendJson(res, out);
+                 }));
+
+    server_.Post("/api/save", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   saveTo(path_);
+                   Json out = status();
+                   out["path"] = relative(path_);
+                   sendJson(res, out);
+                 }));
+
+    server_.Post("/api/save-as",
+                 guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   const std::string requested = stringMember(bodyObject(req), "path");
+                   const fs::path path = resolve(requested);
+                   if (path.extension() != ".json")
+                     fail(400, fmt::format("{}: a model file ends in .json", requested));
+                   std::error_code ec;
+                   if (fs::is_directory(path, ec))
+                     fail(400, fmt::format("{}: is a folder", requested));
+                   makeParent(path);
+                   saveTo(path);
+                   Json out = status();
+                   out["path"] = relative(path_);
+                   sendJson(res, out);
+                 }));
+
+    server_.Post("/api/export",
+                 guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   const Json body = bodyObject(req);
+                   const std::string requested = stringMember(body, "path");
+                   const fs::path path = resolve(requested);
+                   try {
+                     meshFormatFromPath(path.string());
+                   } catch (const MeshIoError&) {
+                     fail(400, fmt::format("{}: unknown mesh format (known: .obj .ply .stl .glb "
+                                           ".off)",
+                                           requested));
+                   }
+                   std::uint32_t resolution = kDefaultExportResolution;
+                   if (auto it = body.find("resolution"); it != body.end()) {
+                     if (!it->is_number_unsigned() || it->get<std::uint64_t>() < kMinResolution ||
+                         it->get<std::uint64_t>() > kMaxExportResolution)
+                       fail(400, fmt::format("$.resolution: expected a whole number from {} to {}",
+                                             kMinResolution, kMaxExportResolution));
+                     resolution = it->get<std::uint32_t>();
+                   }
+                   std::error_code ec;
+                   if (fs::is_directory(path, ec))
+                     fail(400, fmt::format("{}: is a folder", requested));
+                   makeParent(path);
+                   const Mesh mesh = tessellate(session_->surface(), {resolution});
+                   try {
+                     writeMesh(mesh, path.string());
+                   } catch (const MeshIoError& e) {
+                     fail(500, e.what());
+                   }
+                   sendJson(res, {{"path", relative(path)},
+                                  {"vertices", mesh.vertexCount()},
+                                  {"triangles", mesh.triangleCount()}});
+                 }));
+
+    server_.Post("/api/recover", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   if (!recovery_) fail(409, "no autosave to recover");
+                   const fs::path journal = autosavePath(path_);
+                   VertexFrameModel model =
+                       parseVertexFrameModel(readFile(journal), relative(journal));
+                   replaceSession(std::move(model));
+                   recovery_ = false;  // the journal now matches the session
+                   sendJson(res, status());
+                 }));
+
+    server_.Post("/api/discard-recovery",
+                 guarded([this](const httplib::Request&, httplib::Response& res) {
+                   if (!recovery_) fail(409, "no autosave to discard");
+                   std::error_code ec;
+                   fs::remove(autosavePath(path_), ec);
+                   if (ec) fail(500, fmt::format("cannot remove the autosave: {}", ec.message()));
+                   recovery_ = false;
+                   sendJson(res, status());
+                 }));
+  }
+
+  static void sendMesh(httplib::Response& res, const Mesh& mesh, std::uint64_t revision,
+                       std::uint32_t resolution) {
+    static_assert(std::endian::native == std::endian::little,
+                  "the mesh stream is little-endian; add byte swapping for this machine");
+    const std::size_t v = mesh.vertexCount(), t = mesh.triangleCount();
+    std::string body(16 + 4 * (6 * v + 3 * t), '\0');
+    char* out = body.data();
+    const std::uint32_t header[4] = {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(t),
+                                     static_cast<std::uint32_t>(revision & 0xffffffffu),
+                                     resolution};
+    std::memcpy(out, header, sizeof header);
+    out += sizeof header;
+    std::memcpy(out, mesh.positions.data(), 12 * v);
+    out += 12 * v;
+    if (mesh.normals.size() == 3 * v) std::memcpy(out, mesh.normals.data(), 12 * v);
+    out += 12 * v;
+    std::memcpy(out, mesh.indices.data(), 12 * t);
+    res.set_content(std::move(body), "application/octet-stream");
+  }
+
+  StudioOptions options_;
+  fs::path root_;
+  httplib::Server server_;
+  std::thread thread_;
+  int port_ = -1;
+
+  mutable std::mutex mutex_;
+  fs::path path_;
+  std::unique_ptr<ModelSession> session_;
+  std::uint64_t base_ = 0;
+  std::uint64_t savedRevision_ = 0;
+  bool recovery_ = false;
+};
+
+StudioServer::StudioServer(const std::string& modelPath, StudioOptions options)
+    : impl_(std::make_unique<Impl>(modelPath, std::move(options))) {}
+StudioServer::~StudioServer() = default;
+int StudioServer::start() { return impl_->start(); }
+void StudioServer::stop() { impl_->stop(); }
+int StudioServer::port() const { return impl_->port(); }
+std::string StudioServer::url() const { return impl_->url(); }
+std::string StudioServer::root() const { return impl_->root(); }
+std::string StudioServer::modelPath() const { return impl_->modelPath(); }
+
+int runStudio(const std::string& modelPath, const StudioOptions& options) {
+  // SIGINT and SIGTERM are taken by sigwait below: blocked before any server thread
+  // starts, so every thread inherits the mask and none is interrupted.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  std::optional<StudioServer> server;
+  try {
+    server.emplace(modelPath, options);
+    server->start();
+  } catch (const ModelError& e) {
+    std::fprintf(stderr, "pdesurf: %s\n", e.what());
+    return 1;
+  } catch (const StudioError& e) {
+    std::fprintf(stderr, "pdesurf: %s\n", e.what());
+    return 1;
+  }
+  std::printf("pdesurf studio: %s (model: %s, root: %s)\n", server->url().c_str(),
+              server->modelPath().c_str(), server->root().c_str());
+  std::fflush(stdout);
+  int received = 0;
+  while (sigwait(&signals, &received) != 0) {
+  }
+  server->stop();
+  return 0;
+}
+
+}  // namespace pdesurf::studio

@@ -1,0 +1,61 @@
+// The studio server: a thin HTTP layer (cpp-httplib) over pdesurf::ModelSession. It serves
+// one model at a time from a root folder, applies edits, undo and redo, streams meshes,
+// saves atomically and keeps an autosave journal beside the model (`MODEL.autosave`).
+// The JSON API is listed in apps/studio/README.md.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace pdesurf::studio {
+
+struct StudioOptions {
+  /// The folder every path of a request must resolve inside; empty: the model's folder.
+  std::string root;
+  std::string host = "127.0.0.1";
+  /// 0 picks a free port.
+  int port = 8080;
+};
+
+/// The studio cannot start: a root that is not a folder, a model outside the root, a port
+/// that cannot be bound. (An invalid model throws ModelError.)
+class StudioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class StudioServer {
+ public:
+  /// Loads the model (throws ModelError when it is missing or invalid, StudioError when it
+  /// lies outside the root). Nothing listens until start().
+  StudioServer(const std::string& modelPath, StudioOptions options = {});
+  ~StudioServer();
+  StudioServer(const StudioServer&) = delete;
+  StudioServer& operator=(const StudioServer&) = delete;
+
+  /// Binds options.host:options.port and serves on a background thread; returns the port.
+  /// Throws StudioError when the port cannot be bound.
+  int start();
+  /// Stops serving and joins the thread (also done by the destructor).
+  void stop();
+
+  int port() const;
+  /// "http://HOST:PORT/".
+  std::string url() const;
+  /// The canonical root folder and the current model's file (absolute).
+  std::string root() const;
+  std::string modelPath() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// `pdesurf studio`: starts the server, prints
+/// "pdesurf studio: http://HOST:PORT/ (model: PATH, root: DIR)" and serves until SIGINT or
+/// SIGTERM. Returns the exit status: 0 after a signal, 1 when the model is missing or
+/// invalid or the server cannot start (the message goes to stderr).
+int runStudio(const std::string& modelPath, const StudioOptions& options);
+
+}  // namespace pdesurf::studio

@@ -1,0 +1,533 @@
+// Tests of the studio server (apps/studio): the server in-process on 127.0.0.1, a free
+// port and a temporary root folder, talked to with httplib::Client; and `pdesurf studio`.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <spawn.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model_io.hpp"
+#include "server.hpp"
+// After Eigen (through the pdesurf headers): httplib.h brings <resolv.h> and its `_res`.
+#include <httplib.h>
+
+extern char** environ;
+
+namespace pdesurf::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+/// A 2×2 grid of frames over a 5×5 lattice of vertices (index j*5+i at (i, j, 0)).
+std::string gridModel() {
+  Json vertices = Json::array();
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i) vertices.push_back({0.5 * i, 0.5 * j, 0.1 * ((i + j) % 2)});
+  auto at = [](int i, int j) { return j * 5 + i; };
+  Json frames = Json::array();
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) {
+      const int i = 2 * c, j = 2 * r;
+      frames.push_back({{"vertices",
+                         {at(i, j), at(i + 1, j), at(i + 2, j), at(i + 2, j + 1), at(i + 2, j + 2),
+                          at(i + 1, j + 2), at(i, j + 2), at(i, j + 1)}}});
+    }
+  return Json{
+      {"type", "vertex-frames"}, {"name", "grid"}, {"vertices", vertices}, {"frames", frames}}
+      .dump(2);
+}
+
+struct MeshData {
+  std::uint32_t vertexCount = 0, triangleCount = 0, revision = 0, resolution = 0;
+  std::vector<float> positions, normals;
+  std::vector<std::uint32_t> indices;
+};
+
+MeshData parseMesh(const std::string& body) {
+  MeshData m;
+  if (body.size() < 16) throw std::runtime_error("mesh body too short");
+  std::uint32_t header[4];
+  std::memcpy(header, body.data(), 16);
+  m.vertexCount = header[0];
+  m.triangleCount = header[1];
+  m.revision = header[2];
+  m.resolution = header[3];
+  const std::size_t expected = 16 + 4 * (6 * std::size_t{m.vertexCount} + 3 * m.triangleCount);
+  if (body.size() != expected) throw std::runtime_error("mesh body size mismatch");
+  m.positions.resize(3 * m.vertexCount);
+  m.normals.resize(3 * m.vertexCount);
+  m.indices.resize(3 * m.triangleCount);
+  const char* p = body.data() + 16;
+  std::memcpy(m.positions.data(), p, 12 * m.vertexCount);
+  p += 12 * m.vertexCount;
+  std::memcpy(m.normals.data(), p, 12 * m.vertexCount);
+  p += 12 * m.vertexCount;
+  std::memcpy(m.indices.data(), p, 12 * m.triangleCount);
+  return m;
+}
+
+class StudioServerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "pdesurf-studio-XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+    root_ = fs::canonical(pattern);
+    outside_ = root_.string() + "-outside";
+    fs::create_directories(outside_);
+    model_ = root_ / "grid.json";
+    writeText(model_, gridModel());
+    startServer();
+  }
+
+  void TearDown() override {
+    client_.reset();
+    server_.reset();
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+    fs::remove_all(outside_, ignored);
+  }
+
+  void startServer() {
+    client_.reset();
+    server_.reset();
+    server_ = std::make_unique<StudioServer>(model_.string(),
+                                             StudioOptions{root_.string(), "127.0.0.1", 0});
+    const int port = server_->start();
+    ASSERT_GT(port, 0);
+    client_ = std::make_unique<httplib::Client>("127.0.0.1", port);
+    client_->set_connection_timeout(5);
+    client_->set_read_timeout(20);
+    client_->set_write_timeout(20);
+  }
+
+  /// The server "crashes": gone without saving, its autosave left behind.
+  void crashAndRestart() { startServer(); }
+
+  httplib::Result post(const std::string& path, const std::string& body = "{}") {
+    return client_->Post(path.c_str(), body, "application/json");
+  }
+  httplib::Result get(const std::string& path) { return client_->Get(path.c_str()); }
+
+  static Json json(const httplib::Result& r) {
+    if (!r) throw std::runtime_error("no response: " + httplib::to_string(r.error()));
+    return Json::parse(r->body);
+  }
+
+  Json model() { return json(get("/api/model")); }
+
+  MeshData mesh(const std::string& query = "") {
+    auto r = get("/api/mesh" + query);
+    if (!r || r->status != 200) throw std::runtime_error("mesh request failed");
+    EXPECT_EQ(r->get_header_value("Content-Type"), "application/octet-stream");
+    EXPECT_TRUE(r->has_header("X-Solve-Ms"));
+    EXPECT_TRUE(r->has_header("X-Tessellate-Ms"));
+    EXPECT_TRUE(r->has_header("X-C0-Gap"));
+    return parseMesh(r->body);
+  }
+
+  static std::string move(int vertex, double x, double y, double z, const std::string& group = {}) {
+    Json e = {{"op", "move-vertex"}, {"vertex", vertex}, {"position", {x, y, z}}};
+    if (!group.empty()) e["group"] = group;
+    return e.dump();
+  }
+
+  /// The status and the error message of a request expected to fail.
+  static std::pair<int, std::string> failure(const httplib::Result& r) {
+    if (!r) return {-1, httplib::to_string(r.error())};
+    const Json body = Json::parse(r->body, nullptr, false);
+    if (body.is_discarded() || !body.contains("error") || !body["error"].is_string())
+      return {r->status, "(no JSON error) " + r->body};
+    return {r->status, body["error"].get<std::string>()};
+  }
+
+  fs::path root_, outside_, model_;
+  std::unique_ptr<StudioServer> server_;
+  std::unique_ptr<httplib::Client> client_;
+};
+
+TEST_F(StudioServerTest, ModelFetch) {
+  const Json m = model();
+  EXPECT_EQ(m["path"], "grid.json");
+  EXPECT_EQ(m["revision"], 0);
+  EXPECT_EQ(m["undo"], 0);
+  EXPECT_EQ(m["redo"], 0);
+  EXPECT_EQ(m["dirty"], false);
+  EXPECT_EQ(m["recovery"], false);
+  EXPECT_EQ(m["model"]["type"], "vertex-frames");
+  EXPECT_EQ(m["model"]["vertices"].size(), 25u);
+  EXPECT_EQ(m["model"]["frames"].size(), 4u);
+  const auto page = get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("/api/model"), std::string::npos);
+  const auto files = json(get("/api/files"));
+  EXPECT_EQ(files["files"], Json::array({"grid.json"}));
+}
+
+TEST_F(StudioServerTest, EditChangesRevisionAndMesh) {
+  const MeshData before = mesh("?resolution=9");
+  EXPECT_EQ(before.resolution, 9u);
+  EXPECT_EQ(before.revision, 0u);
+  EXPECT_GT(before.vertexCount, 0u);
+  EXPECT_GT(before.triangleCount, 0u);
+  const auto r = post("/api/edit", move(12, 1.0, 1.0, 0.8));
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const Json s = Json::parse(r->body);
+  EXPECT_EQ(s["revision"], 1);
+  EXPECT_EQ(s["undo"], 1);
+  EXPECT_EQ(s["redo"], 0);
+  EXPECT_EQ(model()["dirty"], true);
+  const MeshData after = mesh("?resolution=9");
+  EXPECT_EQ(after.revision, 1u);
+  EXPECT_EQ(after.vertexCount, before.vertexCount);
+  EXPECT_EQ(after.triangleCount, before.triangleCount);
+  EXPECT_EQ(after.indices, before.indices);
+  EXPECT_NE(after.positions, before.positions);
+  // The default resolution, the local solver and a bad resolution.
+  EXPECT_EQ(mesh().resolution, 16u);
+  EXPECT_EQ(mesh("?solver=local&seed=3").vertexCount, mesh().vertexCount);
+  for (const char* bad :
+       {"?resolution=1", "?resolution=258", "?resolution=x", "?solver=magic", "?seed=4"}) {
+    const auto [status, message] = failure(get(std::string("/api/mesh") + bad));
+    EXPECT_EQ(status, 400) << bad;
+    EXPECT_FALSE(message.empty());
+  }
+}
+
+TEST_F(StudioServerTest, DragUndoesInOneStep) {
+  const Json original = model()["model"];
+  for (int i = 0; i < 10; ++i) {
+    const auto r = post("/api/edit", move(12, 1.0, 1.0, 0.1 * i, "drag-1"));
+    ASSERT_TRUE(r);
+    ASSERT_EQ(r->status, 200) << r->body;
+  }
+  ASSERT_EQ(json(post("/api/end-group"))["undo"], 1);
+  const Json dragged = model();
+  EXPECT_EQ(dragged["revision"], 10);
+  EXPECT_EQ(dragged["undo"], 1);
+  auto undone = json(post("/api/undo"));
+  EXPECT_EQ(undone["undo"], 0);
+  EXPECT_EQ(undone["redo"], 1);
+  EXPECT_EQ(model()["model"], original);
+  auto redone = json(post("/api/redo"));
+  EXPECT_EQ(redone["undo"], 1);
+  EXPECT_EQ(redone["redo"], 0);
+  EXPECT_EQ(model()["model"], dragged["model"]);
+}
+
+TEST_F(StudioServerTest, UndoWithNothingIsAConflict) {
+  auto [status, message] = failure(post("/api/undo"));
+  EXPECT_EQ(status, 409);
+  EXPECT_EQ(message, "nothing to undo");
+  std::tie(status, message) = failure(post("/api/redo"));
+  EXPECT_EQ(status, 409);
+  EXPECT_EQ(message, "nothing to redo");
+}
+
+TEST_F(StudioServerTest, InvalidEditsAreRefusedWithTheirJsonPath) {
+  const Json original = model();
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {move(25, 0, 0, 0), "$.vertex"},
+      {R"({"op": "move-vertex", "vertex": "3", "position": [0, 0, 0]})", "$.vertex"},
+      {R"({"op": "move-vertex", "vertex": 3, "position": [0, 0]})", "$.position"},
+      {R"({"op": "set-parameters", "frames": [7], "a1": [1, 1, 1]})", "$.frames[0]"},
+      {R"({"op": "move-vertex", "vertex": 3, "position": [0, 0, )", "malformed JSON"},
+      {R"([1, 2])", "$"},
+      {R"({"op": 5})", "$.op"},
+  };
+  for (const auto& [body, expected] : cases) {
+    const auto [status, message] = failure(post("/api/edit", body));
+    EXPECT_EQ(status, 400) << body;
+    EXPECT_NE(message.find(expected), std::string::npos) << body << " -> " << message;
+  }
+  const Json now = model();
+  EXPECT_EQ(now["model"], original["model"]);
+  EXPECT_EQ(now["revision"], original["revision"]);
+  EXPECT_FALSE(fs::exists(root_ / "grid.json.autosave"));
+}
+
+TEST_F(StudioServerTest, PathsOutsideTheRootAreForbidden) {
+  writeText(outside_ / "x.json", gridModel());
+  writeText(outside_ / "x.glb", "not a mesh");
+  fs::create_symlink(outside_, root_ / "link");
+  fs::create_symlink(outside_ / "x.json", root_ / "x-link.json");
+  fs::create_symlink(outside_ / "x.glb", root_ / "x-link.glb");
+  for (const std::string& path :
+       {std::string("../x.json"), std::string("/etc/passwd"), std::string("sub/../../x.json"),
+        (outside_ / "x.json").string(), std::string("link/x.json"), std::string("x-link.json")}) {
+    const std::string body = Json{{"path", path}}.dump();
+    EXPECT_EQ(failure(post("/api/open", body)).first, 403) << path;
+    EXPECT_EQ(failure(post("/api/save-as", body)).first, 403) << path;
+  }
+  for (const std::string& path :
+       {std::string("../x.glb"), std::string("/etc/x.glb"), (outside_ / "x.glb").string(),
+        std::string("link/y.glb"), std::string("x-link.glb"), std::string("out/../../x.glb")}) {
+    const std::string body = Json{{"path", path}}.dump();
+    EXPECT_EQ(failure(post("/api/export", body)).first, 403) << path;
+  }
+  // Nothing was written outside, and the model is still served.
+  EXPECT_EQ(std::distance(fs::directory_iterator(outside_), fs::directory_iterator()), 2);
+  EXPECT_EQ(readText(outside_ / "x.glb"), "not a mesh");
+  EXPECT_EQ(model()["path"], "grid.json");
+}
+
+TEST_F(StudioServerTest, BadRequestBodies) {
+  EXPECT_EQ(failure(post("/api/open", "{")).first, 400);
+  EXPECT_EQ(failure(post("/api/open", R"({"path": 3})")).first, 400);
+  EXPECT_EQ(failure(post("/api/open", R"({"name": "x"})")).first, 400);
+  EXPECT_EQ(failure(post("/api/open", R"({"path": "missing.json"})")).first, 404);
+  writeText(root_ / "broken.json", R"({"type": "vertex-frames", "vertices": 3})");
+  const auto [status, message] = failure(post("/api/open", R"({"path": "broken.json"})"));
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("$.vertices"), std::string::npos) << message;
+  EXPECT_EQ(model()["path"], "grid.json");
+  EXPECT_EQ(failure(post("/api/export", R"({"path": "out/x.xyz"})")).first, 400);
+  EXPECT_EQ(failure(get("/api/nowhere")).first, 404);
+  EXPECT_EQ(failure(post("/api/nowhere")).first, 404);
+}
+
+TEST_F(StudioServerTest, OversizedBodyIsRefused) {
+  const std::string big(2 << 20, ' ');
+  const auto [status, message] = failure(post("/api/edit", big));
+  EXPECT_EQ(status, 413) << message;
+  EXPECT_EQ(model()["revision"], 0);
+}
+
+TEST_F(StudioServerTest, BurstOfBadRequests) {
+  const std::string big(2 << 20, 'x');
+  for (int i = 0; i < 200; ++i) {
+    switch (i % 4) {
+      case 0:
+        ASSERT_EQ(failure(post("/api/edit", "{\"op\": [")).first, 400) << i;
+        break;
+      case 1:
+        ASSERT_EQ(failure(post("/api/edit", big)).first, 413) << i;
+        break;
+      case 2:
+        ASSERT_EQ(failure(post("/api/open", R"({"path": "../../etc/passwd"})")).first, 403) << i;
+        break;
+      default:
+        ASSERT_EQ(failure(post("/api/edit", move(99, 0, 0, 0))).first, 400) << i;
+    }
+  }
+  const auto r = post("/api/edit", move(0, 0, 0, 1));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_EQ(mesh().revision, 1u);
+}
+
+TEST_F(StudioServerTest, SaveThenReopenGivesTheSameModel) {
+  ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.7))->status, 200);
+  ASSERT_EQ(
+      post("/api/edit", R"({"op": "set-parameters", "frames": [0, 3], "a1": [2, 2, 2]})")->status,
+      200);
+  ASSERT_TRUE(fs::exists(root_ / "grid.json.autosave"));
+  const Json edited = model();
+  const auto saved = post("/api/save");
+  ASSERT_TRUE(saved);
+  ASSERT_EQ(saved->status, 200) << saved->body;
+  EXPECT_EQ(Json::parse(saved->body)["dirty"], false);
+  EXPECT_FALSE(fs::exists(root_ / "grid.json.autosave"));
+  for (const auto& entry : fs::directory_iterator(root_))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+        << entry.path().filename();
+  const std::string text = readText(model_);
+  EXPECT_EQ(serializeVertexFrameModel(parseVertexFrameModel(text, "saved")),
+            serializeVertexFrameModel(parseVertexFrameModel(edited["model"].dump(), "edited")));
+
+  // Save-as into a new folder inside the root, then re-open the first file.
+  const auto as = post("/api/save-as", R"({"path": "copies/grid2.json"})");
+  ASSERT_TRUE(as);
+  ASSERT_EQ(as->status, 200) << as->body;
+  EXPECT_EQ(model()["path"], "copies/grid2.json");
+  EXPECT_EQ(readText(root_ / "copies/grid2.json"), text);
+  EXPECT_EQ(json(get("/api/files"))["files"], Json::array({"copies/grid2.json", "grid.json"}));
+  const auto opened = post("/api/open", R"({"path": "grid.json"})");
+  ASSERT_EQ(opened->status, 200) << opened->body;
+  const Json reopened = model();
+  EXPECT_EQ(reopened["path"], "grid.json");
+  EXPECT_EQ(reopened["dirty"], false);
+  EXPECT_EQ(reopened["undo"], 0);
+  EXPECT_GT(reopened["revision"].get<int>(), edited["revision"].get<int>());
+  EXPECT_EQ(reopened["model"].dump(), edited["model"].dump());
+}
+
+TEST_F(StudioServerTest, AutosaveRecoversAfterACrash) {
+  ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.9))->status, 200);
+  ASSERT_EQ(post("/api/edit", move(6, 0.5, 0.5, -0.4))->status, 200);
+  const Json edited = model()["model"];
+  ASSERT_TRUE(fs::exists(root_ / "grid.json.autosave"));
+  crashAndRestart();
+  Json m = model();
+  EXPECT_EQ(m["recovery"], true);
+  EXPECT_NE(m["model"], edited);
+  // An edit before deciding leaves the journal alone.
+  ASSERT_EQ(post("/api/edit", move(0, 0, 0, 0.3))->status, 200);
+  const auto r = post("/api/recover");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  m = model();
+  EXPECT_EQ(m["recovery"], false);
+  EXPECT_EQ(m["dirty"], true);
+  EXPECT_EQ(m["model"], edited);
+  EXPECT_EQ(failure(post("/api/recover")).first, 409);
+
+  // Discarding: another crash, then the journal goes.
+  crashAndRestart();
+  EXPECT_EQ(model()["recovery"], true);
+  ASSERT_EQ(post("/api/discard-recovery")->status, 200);
+  EXPECT_FALSE(fs::exists(root_ / "grid.json.autosave"));
+  EXPECT_EQ(model()["recovery"], false);
+  crashAndRestart();
+  EXPECT_EQ(model()["recovery"], false);
+}
+
+TEST_F(StudioServerTest, ExportWritesAReadableMesh) {
+  const auto r = post("/api/export", R"({"path": "out/x.glb", "resolution": 9})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const Mesh written = readMesh((root_ / "out/x.glb").string());
+  const MeshData served = mesh("?resolution=9");
+  EXPECT_EQ(written.vertexCount(), served.vertexCount);
+  EXPECT_EQ(written.triangleCount(), served.triangleCount);
+  for (const char* ext : {"obj", "stl", "ply"}) {
+    const auto e = post("/api/export", Json{{"path", std::string("x.") + ext}}.dump());
+    ASSERT_TRUE(e);
+    EXPECT_EQ(e->status, 200) << ext << e->body;
+    EXPECT_TRUE(fs::exists(root_ / (std::string("x.") + ext)));
+  }
+  EXPECT_EQ(failure(post("/api/export", R"({"path": "x.glb", "resolution": 1})")).first, 400);
+}
+
+// ---------------------------------------------------------------------------------------
+// `pdesurf studio`
+
+struct Child {
+  pid_t pid = -1;
+  int out = -1;  ///< read end of its stdout
+};
+
+Child spawnCli(const std::vector<std::string>& args, const std::string& errFile) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 1);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
+  std::vector<std::string> all = {PDESURF_CLI};
+  all.insert(all.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  Child child;
+  const int rc = ::posix_spawn(&child.pid, PDESURF_CLI, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[1]);
+  if (rc != 0) {
+    ::close(fds[0]);
+    throw std::runtime_error("posix_spawn failed");
+  }
+  child.out = fds[0];
+  return child;
+}
+
+/// The first line of the child's stdout, waiting at most `timeout`.
+std::string readLine(int fd, std::chrono::milliseconds timeout) {
+  std::string line;
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (line.find('\n') == std::string::npos) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        end - std::chrono::steady_clock::now());
+    if (left.count() <= 0) break;
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
+    char buf[256];
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n <= 0) break;
+    line.append(buf, static_cast<std::size_t>(n));
+  }
+  return line.substr(0, line.find('\n'));
+}
+
+/// The exit status, or -1 (after SIGKILL) when the child has not exited within `timeout`.
+int waitExit(pid_t pid, std::chrono::milliseconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  int status = 0;
+  while (std::chrono::steady_clock::now() < end) {
+    if (::waitpid(pid, &status, WNOHANG) == pid)
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -2;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  return -1;
+}
+
+class StudioCliTest : public StudioServerTest {};
+
+TEST_F(StudioCliTest, MissingModelExitsOne) {
+  const std::string err = (root_ / "err.txt").string();
+  Child child = spawnCli({"studio", (root_ / "missing.json").string(), "--port", "0"}, err);
+  EXPECT_EQ(waitExit(child.pid, std::chrono::seconds(10)), 1);
+  ::close(child.out);
+  const std::string message = readText(err);
+  EXPECT_NE(message.find("missing.json"), std::string::npos) << message;
+}
+
+TEST_F(StudioCliTest, ServesUntilSigterm) {
+  const std::string err = (outside_ / "err.txt").string();
+  Child child = spawnCli({"studio", model_.string(), "--port", "0"}, err);
+  const std::string line = readLine(child.out, std::chrono::seconds(10));
+  EXPECT_EQ(line.rfind("pdesurf studio: http://127.0.0.1:", 0), 0u) << line;
+  EXPECT_NE(line.find("(model: " + model_.string() + ", root: " + root_.string() + ")"),
+            std::string::npos)
+      << line;
+  const auto colon = line.find(':', std::strlen("pdesurf studio: http:"));
+  const int port = colon == std::string::npos ? 0 : std::atoi(line.c_str() + colon + 1);
+  if (port > 0) {
+    httplib::Client client("127.0.0.1", port);
+    client.set_connection_timeout(5);
+    client.set_read_timeout(10);
+    const auto r = client.Get("/api/model");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200);
+  }
+  ::kill(child.pid, SIGTERM);
+  EXPECT_EQ(waitExit(child.pid, std::chrono::seconds(10)), 0) << readText(err);
+  ::close(child.out);
+}
+
+}  // namespace
+}  // namespace pdesurf::studio
