@@ -83,6 +83,8 @@ class ModelSession {
 
  private:
   void changed();
+  /// Moves the current model onto `to` and the last of `from` into its place.
+  bool step(std::vector<VertexFrameModel>& from, std::vector<VertexFrameModel>& to);
 
   VertexFrameModel model_;
   std::uint64_t revision_ = 0;

@@ -39,25 +39,19 @@ void ModelSession::apply(const Edit& edit, std::string_view group) {
   changed();
 }
 
-bool ModelSession::undo() {
-  if (undo_.empty()) return false;
-  redo_.push_back(std::move(model_));
-  model_ = std::move(undo_.back());
-  undo_.pop_back();
+bool ModelSession::step(std::vector<VertexFrameModel>& from, std::vector<VertexFrameModel>& to) {
+  if (from.empty()) return false;
+  to.push_back(std::move(model_));
+  model_ = std::move(from.back());
+  from.pop_back();
   group_.clear();
   changed();
   return true;
 }
 
-bool ModelSession::redo() {
-  if (redo_.empty()) return false;
-  undo_.push_back(std::move(model_));
-  model_ = std::move(redo_.back());
-  redo_.pop_back();
-  group_.clear();
-  changed();
-  return true;
-}
+bool ModelSession::undo() { return step(undo_, redo_); }
+
+bool ModelSession::redo() { return step(redo_, undo_); }
 
 const VertexFrameSurface& ModelSession::surface(const SolveOptions& options) {
   const bool sameOptions =
