@@ -15,6 +15,7 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -131,11 +132,17 @@ std::uint32_t parseUint(const std::string& text, std::uint32_t lo, std::uint32_t
   return value;
 }
 
+// The built front-end of this source tree, web/dist (`make build` makes it). The build may
+// define PDESURF_WEB_DIR_DEFAULT; otherwise it is found from this file's path.
+#ifndef PDESURF_WEB_DIR_DEFAULT
+#define PDESURF_WEB_DIR_DEFAULT ""
+#endif
+
 constexpr const char* kIndexPage = R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>pdesurf studio</title></head>
 <body>
 <h1>pdesurf studio</h1>
-<p>The studio's web front-end is not built yet. The server's JSON API:</p>
+<p>The studio's web front-end is not built here (<code>make build</code> builds web/dist; <code>PDESURF_WEB_DIR</code> names another folder). The server's JSON API:</p>
 <ul>
 <li>GET /api/model: the model, its path, revision, undo and redo depths, dirty, recovery</li>
 <li>POST /api/edit (an edit), /api/end-group, /api/undo, /api/redo</li>
@@ -147,6 +154,12 @@ constexpr const char* kIndexPage = R"(<!doctype html>
 )";
 
 }  // namespace
+
+std::string defaultWebDir() {
+  if (const char* env = std::getenv("PDESURF_WEB_DIR"); env && *env) return env;
+  if (*PDESURF_WEB_DIR_DEFAULT) return PDESURF_WEB_DIR_DEFAULT;
+  return (fs::path(__FILE__).parent_path().parent_path().parent_path() / "web" / "dist").string();
+}
 
 class StudioServer::Impl {
  public:
@@ -195,6 +208,7 @@ class StudioServer::Impl {
   int port() const { return port_; }
   std::string url() const { return fmt::format("http://{}:{}/", options_.host, port_); }
   std::string root() const { return root_.string(); }
+  std::string webDir() const { return webDir_.string(); }
   std::string modelPath() const {
     std::lock_guard lock(mutex_);
     return path_.string();
@@ -336,6 +350,30 @@ class StudioServer::Impl {
     };
   }
 
+  /// The front-end: files under the web folder answer GET before any route (so /api/...
+  /// is never shadowed: the folder has no api/). Without a built front-end, `/` is the
+  /// placeholder page.
+  void mountWebDir() {
+    std::error_code ec;
+    const fs::path web =
+        options_.webDir.empty() ? fs::path(defaultWebDir()) : fs::path(options_.webDir);
+    if (fs::is_regular_file(web / "index.html", ec) &&
+        server_.set_mount_point("/", fs::canonical(web, ec).string())) {
+      webDir_ = fs::canonical(web, ec);
+      for (const auto& [ext, type] : {std::pair{"html", "text/html; charset=utf-8"},
+                                      {"js", "text/javascript"},
+                                      {"mjs", "text/javascript"},
+                                      {"css", "text/css"},
+                                      {"svg", "image/svg+xml"},
+                                      {"json", "application/json"},
+                                      {"wasm", "application/wasm"},
+                                      {"png", "image/png"},
+                                      {"ico", "image/x-icon"},
+                                      {"map", "application/json"}})
+        server_.set_file_extension_and_mimetype_mapping(ext, type);
+    }
+  }
+
   void routes() {
     server_.set_payload_max_length(kMaxBody);
     server_.set_read_timeout(10);
@@ -356,6 +394,7 @@ class StudioServer::Impl {
           sendJson(res, {{"error", "internal error"}}, 500);
         });
 
+    mountWebDir();
     server_.Get("/", [](const httplib::Request&, httplib::Response& res) {
       res.set_content(kIndexPage, "text/html; charset=utf-8");
     });
@@ -538,6 +577,7 @@ class StudioServer::Impl {
 
   StudioOptions options_;
   fs::path root_;
+  fs::path webDir_;
   httplib::Server server_;
   std::thread thread_;
   int port_ = -1;
@@ -559,6 +599,7 @@ int StudioServer::port() const { return impl_->port(); }
 std::string StudioServer::url() const { return impl_->url(); }
 std::string StudioServer::root() const { return impl_->root(); }
 std::string StudioServer::modelPath() const { return impl_->modelPath(); }
+std::string StudioServer::webDir() const { return impl_->webDir(); }
 
 int runStudio(const std::string& modelPath, const StudioOptions& options) {
   // SIGINT and SIGTERM are taken by sigwait below: blocked before any server thread

@@ -16,7 +16,14 @@ struct StudioOptions {
   std::string host = "127.0.0.1";
   /// 0 picks a free port.
   int port = 8080;
+  /// The built web front-end (index.html and assets/), served at `/`. Empty: the
+  /// environment variable PDESURF_WEB_DIR, else the source tree's web/dist compiled in.
+  /// When the folder has no index.html, `/` is a placeholder page.
+  std::string webDir;
 };
+
+/// The folder the front-end is served from when StudioOptions::webDir is empty.
+std::string defaultWebDir();
 
 /// The studio cannot start: a root that is not a folder, a model outside the root, a port
 /// that cannot be bound. (An invalid model throws ModelError.)
@@ -46,6 +53,8 @@ class StudioServer {
   /// The canonical root folder and the current model's file (absolute).
   std::string root() const;
   std::string modelPath() const;
+  /// The folder of the front-end served at `/`, or empty when it is not built.
+  std::string webDir() const;
 
  private:
   class Impl;

@@ -1,0 +1,99 @@
+// A `pdesurf studio` per test: a temporary root with a copy of an example, the server on
+// a free port (its URL is the first line it prints), stopped (SIGTERM) when the test ends.
+import { test as base, expect, type Page } from '@playwright/test';
+import { spawn, type ChildProcess } from 'node:child_process';
+import { copyFileSync, mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { createInterface } from 'node:readline';
+
+export const SOURCE_DIR = path.resolve(__dirname, '..', '..');
+export const CLI = process.env.PDESURF_CLI || path.join(SOURCE_DIR, 'build', 'pdesurf');
+export const ARTIFACTS = path.resolve(__dirname, '..', 'artifacts');
+
+export interface Studio {
+  url: string;
+  root: string;
+  model: string;
+  /** GET /api/model, parsed. */
+  state(): Promise<any>;
+}
+
+async function startStudio(example: string): Promise<{ studio: Studio; child: ChildProcess }> {
+  const root = mkdtempSync(path.join(tmpdir(), 'pdesurf-e2e-'));
+  const model = path.join(root, example);
+  copyFileSync(path.join(SOURCE_DIR, 'examples', example), model);
+  const child = spawn(CLI, ['studio', model, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+  let stderr = '';
+  child.stderr!.on('data', (d) => (stderr += d));
+  const url = await new Promise<string>((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`studio did not start: ${stderr}`)), 15_000);
+    child.on('exit', (code) => reject(new Error(`studio exited with ${code}: ${stderr}`)));
+    createInterface({ input: child.stdout! }).once('line', (line) => {
+      clearTimeout(timer);
+      const m = /(http:\/\/\S+\/)/.exec(line);
+      if (m) resolve(m[1]);
+      else reject(new Error(`unexpected first line: ${line}`));
+    });
+  });
+  const studio: Studio = {
+    url,
+    root,
+    model,
+    state: async () => (await fetch(`${url}api/model`)).json(),
+  };
+  return { studio, child };
+}
+
+export const test = base.extend<{ example: string; studio: Studio }>({
+  example: ['sculpt.json', { option: true }],
+  studio: async ({ example }, use) => {
+    const { studio, child } = await startStudio(example);
+    try {
+      await use(studio);
+    } finally {
+      const exited = new Promise((r) => child.once('exit', r));
+      child.kill('SIGTERM');
+      await Promise.race([exited, new Promise((r) => setTimeout(r, 3000))]);
+      if (child.exitCode === null) child.kill('SIGKILL');
+      rmSync(studio.root, { recursive: true, force: true });
+    }
+  },
+});
+
+export { expect };
+
+/** Opens the studio and waits until the model and its first mesh are shown. */
+export async function openStudio(page: Page, studio: Studio): Promise<void> {
+  const errors: string[] = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(studio.url);
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(page.getByTestId('c0-gap')).toContainText('C0 gap');
+  expect(errors).toEqual([]);
+}
+
+export function shot(name: string): string {
+  mkdirSync(ARTIFACTS, { recursive: true });
+  return path.join(ARTIFACTS, name);
+}
+
+/** The revision of the last mesh the page drew and of the session. */
+export async function pageState(page: Page): Promise<{ revision: number; mesh: number; error: string }> {
+  return page.evaluate(() => (window as any).__studio.state());
+}
+
+/** Waits until the page shows the mesh of the session's current revision. */
+export async function meshUpToDate(page: Page): Promise<void> {
+  await expect
+    .poll(async () => {
+      const s = await pageState(page);
+      return s.mesh === s.revision;
+    })
+    .toBe(true);
+}
+
+/** Waits until every edit the page queued is answered (a drag's last move included). */
+export async function settle(page: Page): Promise<void> {
+  await page.evaluate(() => (window as any).__studio.idle());
+}

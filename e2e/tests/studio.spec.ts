@@ -1,0 +1,244 @@
+import { existsSync, statSync } from 'node:fs';
+import path from 'node:path';
+import { expect, meshUpToDate, openStudio, pageState, settle, shot, test } from './fixture';
+
+const surface = (page: import('@playwright/test').Page) =>
+  page.locator('[data-testid="surface-view"] canvas');
+
+test('the page loads the model and its mesh', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await expect(page.getByTestId('status')).toContainText('1 frame');
+  await expect(page.getByTestId('status')).toContainText('8 vertices');
+  await expect(page.getByTestId('status')).toContainText(/solve [\d.]+ ms/);
+  await expect(page.getByTestId('model-path')).toHaveText('sculpt.json');
+  await expect(page.getByTestId('error')).toHaveText('');
+  await page.screenshot({ path: shot('loaded.png') });
+});
+
+test.describe('grid-forces', () => {
+  test.use({ example: 'grid-forces.json' });
+
+  test('loads 16 frames; zebra stripes', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    await expect(page.getByTestId('status')).toContainText('16 frames');
+    await page.getByTestId('zebra').check();
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: shot('grid-zebra.png') });
+  });
+});
+
+test('drag a vertex: the model and the surface change; undo and redo', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  const before = (await studio.state()).model.vertices[4];
+  await page.waitForTimeout(300);
+  const imageBefore = await surface(page).screenshot();
+
+  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(4));
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; ++i) await page.mouse.move(p.x + 4 * i, p.y - 8 * i);
+  await page.mouse.up();
+  await settle(page);
+  await expect(page.getByTestId('vertex-index')).toHaveText('#4');
+
+  await expect.poll(async () => (await studio.state()).undo).toBe(1); // one drag: one undo step
+  const moved = (await studio.state()).model.vertices[4];
+  expect(moved).not.toEqual(before);
+  await meshUpToDate(page);
+  await page.waitForTimeout(300);
+  const imageAfter = await surface(page).screenshot();
+  expect(imageAfter.equals(imageBefore)).toBe(false);
+  await page.screenshot({ path: shot('dragged.png') });
+
+  // The coordinate inputs show the moved vertex.
+  expect(Number(await page.getByTestId('vertex-z').inputValue())).toBeCloseTo(moved[2], 3);
+
+  await page.locator('body').click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press('Control+z');
+  await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(before);
+  await page.keyboard.press('Control+Shift+z');
+  await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(moved);
+  await page.getByTestId('undo').click();
+  await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(before);
+  await page.getByTestId('redo').click();
+  await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(moved);
+});
+
+test('typing a coordinate moves the selected vertex', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(2));
+  await page.mouse.click(p.x, p.y);
+  await expect(page.getByTestId('vertex-index')).toHaveText('#2');
+  await page.getByTestId('vertex-z').fill('0.4');
+  await page.getByTestId('vertex-z').press('Enter');
+  await expect.poll(async () => (await studio.state()).model.vertices[2][2]).toBeCloseTo(0.4, 6);
+});
+
+test('select a frame and move the a1 slider: the shape changes', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  const f = await page.evaluate(() => (window as any).__studio.frameScreen(0));
+  await page.mouse.click(f.x, f.y);
+  await expect(page.getByTestId('frame-selection')).toHaveText('#0');
+  await expect(page.getByTestId('a1-z')).toBeEnabled();
+  await meshUpToDate(page);
+  await page.waitForTimeout(300);
+  const imageBefore = await surface(page).screenshot();
+
+  // a1.z: the forces of sculpt.json push along z, so z is what a1.z reshapes.
+  await page.getByTestId('a1-z').fill('0.3');
+  await expect.poll(async () => (await studio.state()).model.frames[0].a1?.[2]).toBeCloseTo(0.3, 6);
+  await expect(page.getByTestId('a1-z-value')).toHaveText('0.3');
+  await meshUpToDate(page);
+  await page.waitForTimeout(300);
+  const imageAfter = await surface(page).screenshot();
+  expect(imageAfter.equals(imageBefore)).toBe(false);
+
+  // Magnification: value = slider × magnification.
+  await page.getByTestId('a1-y-mag').fill('3');
+  await page.getByTestId('a1-y-mag').press('Enter');
+  await expect.poll(async () => (await studio.state()).model.frames[0].a1?.[1]).toBeCloseTo(3, 6);
+
+  // A force region and f0.
+  await page.getByTestId('force-0-u1').fill('0.6');
+  await page.getByTestId('force-0-u1').press('Enter');
+  await expect
+    .poll(async () => (await studio.state()).model.frames[0].forces[0].region[1])
+    .toBeCloseTo(0.6, 6);
+  await page.getByTestId('f0-z').fill('0.9');
+  await expect
+    .poll(async () => (await studio.state()).model.frames[0].forces[0].f0[2])
+    .toBeCloseTo(-90, 6);
+  await page.screenshot({ path: shot('slider.png') });
+  await expect(page.getByTestId('error')).toHaveText('');
+});
+
+test.describe('shared forces', () => {
+  test.use({ example: 'grid-forces.json' });
+
+  test('shift-click selects several frames; f0 sets a shared force', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    const a = await page.evaluate(() => (window as any).__studio.frameScreen(0));
+    const b = await page.evaluate(() => (window as any).__studio.frameScreen(1));
+    await page.mouse.click(a.x, a.y);
+    await page.keyboard.down('Shift');
+    await page.mouse.click(b.x, b.y);
+    await page.keyboard.up('Shift');
+    await expect(page.getByTestId('frame-selection')).toHaveText('#0 #1');
+    await page.getByTestId('f0-z').fill('0.5');
+    await expect
+      .poll(async () => (await studio.state()).model.forces?.find((f: any) => f.frames.length === 2))
+      .toEqual({ f0: [0, 0, 0.5], frames: [0, 1] });
+    await page.screenshot({ path: shot('shared-force.png') });
+  });
+});
+
+test('save as, open another model and reopen it: the same model', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(1));
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + 30, p.y - 30, { steps: 5 });
+  await page.mouse.up();
+  await settle(page);
+  await expect.poll(async () => (await studio.state()).undo).toBe(1);
+  const edited = (await studio.state()).model;
+
+  await page.getByTestId('saveas-path').fill('saved/copy.json');
+  await page.getByTestId('save-as').click();
+  await expect(page.getByTestId('model-path')).toHaveText('saved/copy.json');
+  await expect(page.getByTestId('dirty')).toBeHidden();
+  expect(existsSync(path.join(studio.root, 'saved', 'copy.json'))).toBe(true);
+
+  await page.getByTestId('file-select').selectOption('sculpt.json');
+  await page.getByTestId('open').click();
+  await expect(page.getByTestId('model-path')).toHaveText('sculpt.json');
+  expect((await studio.state()).model).not.toEqual(edited);
+
+  await page.getByTestId('file-select').selectOption('saved/copy.json');
+  await page.getByTestId('open').click();
+  await expect(page.getByTestId('model-path')).toHaveText('saved/copy.json');
+  expect((await studio.state()).model).toEqual(edited);
+
+  // Save writes the file of the session.
+  await page.getByTestId('save').click();
+  await expect(page.getByTestId('status')).toContainText('saved saved/copy.json');
+});
+
+test('export OBJ, STL and glb under the root', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  for (const ext of ['obj', 'stl', 'glb']) {
+    await page.getByTestId(`export-${ext}`).click();
+    await expect(page.getByTestId('status')).toContainText(`exported sculpt.${ext}`);
+    const file = path.join(studio.root, `sculpt.${ext}`);
+    expect(existsSync(file)).toBe(true);
+    expect(statSync(file).size).toBeGreaterThan(100);
+  }
+});
+
+test('an invalid edit shows the error and the page goes on working', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  const error = await page.evaluate(() =>
+    (window as any).__studio.edit({ op: 'move-vertex', vertex: 9999, position: [0, 0, 0] }),
+  );
+  expect(error).toContain('out of range');
+  await expect(page.getByTestId('error')).toContainText('out of range');
+  await expect(page.getByTestId('status')).toContainText('8 vertices');
+  await page.screenshot({ path: shot('error.png') });
+
+  // A raw request is refused the same way, and the model stays.
+  const status = await page.evaluate(async () => {
+    const r = await fetch('/api/edit', {
+      method: 'POST',
+      body: JSON.stringify({ op: 'move-vertex', vertex: 9999, position: [0, 0, 0] }),
+    });
+    return r.status;
+  });
+  expect(status).toBe(400);
+  expect((await studio.state()).revision).toBe(0);
+
+  // Still works: a drag is accepted and clears the error.
+  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(3));
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + 20, p.y - 20, { steps: 4 });
+  await page.mouse.up();
+  await settle(page);
+  await expect.poll(async () => (await studio.state()).undo).toBe(1);
+  await expect(page.getByTestId('error')).toHaveText('');
+  await meshUpToDate(page);
+  const s = await pageState(page);
+  expect(s.error).toBe('');
+});
+
+test('Live off: edits wait for Create', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await page.getByTestId('live').uncheck();
+  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(4));
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x, p.y - 40, { steps: 4 });
+  await page.mouse.up();
+  await settle(page);
+  await expect.poll(async () => (await studio.state()).undo).toBe(1);
+  await expect(page.getByTestId('status')).toContainText('out of date');
+  const s = await pageState(page);
+  expect(s.mesh).not.toBe(s.revision);
+  await page.getByTestId('create').click();
+  await meshUpToDate(page);
+});
+
+test('recovery: an autosave that differs from the file is offered', async ({ page, studio }) => {
+  const fs = await import('node:fs');
+  const model = JSON.parse(fs.readFileSync(studio.model, 'utf8'));
+  model.vertices[4][2] = 0.5;
+  fs.writeFileSync(`${studio.model}.autosave`, JSON.stringify(model));
+  // The server looks for a journal when a model is opened: open the file again.
+  await page.goto(studio.url);
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await page.getByTestId('file-select').selectOption('sculpt.json');
+  await page.getByTestId('open').click();
+  await expect(page.getByTestId('recovery')).toBeVisible();
+  await page.getByTestId('recover').click();
+  await expect(page.getByTestId('recovery')).toBeHidden();
+  await expect.poll(async () => (await studio.state()).model.vertices[4][2]).toBe(0.5);
+});

@@ -1,0 +1,175 @@
+// The typed client of the studio server's API (apps/studio/README.md). Every request of
+// the front-end goes through this module.
+
+export type Vec3 = [number, number, number];
+export type Region = [number, number, number, number];
+
+export interface FrameForce {
+  f0: Vec3;
+  region?: Region;
+}
+export interface Frame {
+  vertices: number[];
+  a1?: Vec3;
+  a2?: Vec3;
+  forces?: FrameForce[];
+}
+export interface SharedForce {
+  f0: Vec3;
+  frames: number[];
+}
+export interface Model {
+  type: 'vertex-frames';
+  name?: string;
+  description?: string;
+  vertices: Vec3[];
+  frames: Frame[];
+  forces?: SharedForce[];
+}
+
+/** The session status every edit, undo and redo answers with. */
+export interface Status {
+  revision: number;
+  undo: number;
+  redo: number;
+  dirty: boolean;
+}
+export interface ModelState extends Status {
+  path: string;
+  recovery: boolean;
+  model: Model;
+}
+export interface FileStatus extends Status {
+  path: string;
+  recovery?: boolean;
+}
+export interface ExportResult {
+  path: string;
+  vertices: number;
+  triangles: number;
+}
+
+export type Edit =
+  | { op: 'move-vertex'; vertex: number; position: Vec3; group?: string }
+  | { op: 'set-parameters'; frames: number[]; a1?: Vec3; a2?: Vec3; group?: string }
+  | { op: 'set-forces'; frame: number; forces: FrameForce[]; group?: string }
+  | { op: 'set-shared-forces'; forces: SharedForce[]; group?: string };
+
+/** The surface as the server streams it (GET /api/mesh). */
+export interface MeshData {
+  vertexCount: number;
+  triangleCount: number;
+  /** The low 32 bits of the revision the mesh was made from. */
+  revision: number;
+  resolution: number;
+  positions: Float32Array;
+  normals: Float32Array;
+  indices: Uint32Array;
+  solveMs: number;
+  tessellateMs: number;
+  c0Gap: number;
+}
+
+export interface MeshOptions {
+  resolution?: number;
+  solver?: 'global' | 'local';
+  seed?: number;
+}
+
+/** A request the server refused: its status and the message of {"error": ...}. */
+export class ApiError extends Error {
+  constructor(
+    readonly status: number,
+    message: string,
+  ) {
+    super(message);
+    this.name = 'ApiError';
+  }
+}
+
+async function failure(res: Response): Promise<ApiError> {
+  let message = `HTTP ${res.status}`;
+  try {
+    const body = (await res.json()) as { error?: string };
+    if (body && typeof body.error === 'string') message = body.error;
+  } catch {
+    /* not JSON: keep the status */
+  }
+  return new ApiError(res.status, message);
+}
+
+async function request<T>(method: 'GET' | 'POST', path: string, body?: unknown): Promise<T> {
+  let res: Response;
+  try {
+    res = await fetch(path, {
+      method,
+      headers: body === undefined ? undefined : { 'Content-Type': 'application/json' },
+      body: method === 'POST' ? JSON.stringify(body ?? {}) : undefined,
+    });
+  } catch (e) {
+    throw new ApiError(0, `the studio server does not answer (${(e as Error).message})`);
+  }
+  if (!res.ok) throw await failure(res);
+  return (await res.json()) as T;
+}
+
+/** Parses the binary mesh: four uint32 (V, T, revision, resolution), positions, normals, indices. */
+export function parseMesh(buffer: ArrayBuffer, headers?: Headers): MeshData {
+  if (buffer.byteLength < 16) throw new ApiError(0, 'mesh: truncated header');
+  const header = new DataView(buffer, 0, 16);
+  const v = header.getUint32(0, true);
+  const t = header.getUint32(4, true);
+  const expected = 16 + 4 * (6 * v + 3 * t);
+  if (buffer.byteLength !== expected)
+    throw new ApiError(0, `mesh: ${buffer.byteLength} bytes, expected ${expected}`);
+  const number = (name: string) => {
+    const text = headers?.get(name);
+    return text == null ? NaN : Number(text);
+  };
+  return {
+    vertexCount: v,
+    triangleCount: t,
+    revision: header.getUint32(8, true),
+    resolution: header.getUint32(12, true),
+    positions: new Float32Array(buffer, 16, 3 * v),
+    normals: new Float32Array(buffer, 16 + 12 * v, 3 * v),
+    indices: new Uint32Array(buffer, 16 + 24 * v, 3 * t),
+    solveMs: number('X-Solve-Ms'),
+    tessellateMs: number('X-Tessellate-Ms'),
+    c0Gap: number('X-C0-Gap'),
+  };
+}
+
+export const api = {
+  model: () => request<ModelState>('GET', '/api/model'),
+  edit: (edit: Edit) => request<Status>('POST', '/api/edit', edit),
+  endGroup: () => request<Status>('POST', '/api/end-group'),
+  undo: () => request<Status>('POST', '/api/undo'),
+  redo: () => request<Status>('POST', '/api/redo'),
+  files: async () => (await request<{ files: string[] }>('GET', '/api/files')).files,
+  open: (path: string) => request<FileStatus>('POST', '/api/open', { path }),
+  save: () => request<FileStatus>('POST', '/api/save'),
+  saveAs: (path: string) => request<FileStatus>('POST', '/api/save-as', { path }),
+  exportMesh: (path: string, resolution?: number) =>
+    request<ExportResult>('POST', '/api/export', resolution ? { path, resolution } : { path }),
+  recover: () => request<Status>('POST', '/api/recover'),
+  discardRecovery: () => request<Status>('POST', '/api/discard-recovery'),
+
+  async mesh(options: MeshOptions = {}): Promise<MeshData> {
+    const query = new URLSearchParams();
+    if (options.resolution) query.set('resolution', String(options.resolution));
+    if (options.solver) query.set('solver', options.solver);
+    if (options.seed !== undefined) query.set('seed', String(options.seed));
+    const q = query.toString();
+    let res: Response;
+    try {
+      res = await fetch(`/api/mesh${q ? `?${q}` : ''}`);
+    } catch (e) {
+      throw new ApiError(0, `the studio server does not answer (${(e as Error).message})`);
+    }
+    if (!res.ok) throw await failure(res);
+    return parseMesh(await res.arrayBuffer(), res.headers);
+  },
+};
+
+export type Api = typeof api;
