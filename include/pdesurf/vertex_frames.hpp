@@ -192,9 +192,6 @@ std::array<Vec3, 10> patchCoefficients(const std::array<Vec3, 8>& p, const Vec3&
 /// per component: C3 = -(a2/(3 a1)) C9, C6 = -(a1/(3 a2)) C8 (0 where a1 or a2 is 0).
 std::array<Vec3, 2> singlePatchCubics(const std::array<Vec3, 8>& p, const Vec3& a1, const Vec3& a2);
 
-/// All forces acting on frame k (its own and the shared ones) as particular solutions.
-std::vector<ForceTerm> forceTerms(const VertexFrameModel& model, std::uint32_t frame);
-
 /// Solves every patch of a valid model.
 VertexFrameSurface solve(const VertexFrameModel& model, const SolveOptions& options = {});
 

@@ -103,16 +103,6 @@ std::vector<std::vector<ForceTerm>> allForceTerms(const VertexFrameModel& model)
 
 }  // namespace
 
-std::vector<ForceTerm> forceTerms(const VertexFrameModel& model, std::uint32_t frame) {
-  std::vector<ForceTerm> terms;
-  for (const FrameForce& ff : model.frames[frame].forces)
-    terms.push_back(forceTerm(model.frames[frame], ff.f0, ff.region));
-  for (const SharedForce& sf : model.forces)
-    for (std::uint32_t k : sf.frames)
-      if (k == frame) terms.push_back(forceTerm(model.frames[frame], sf.f0, {}));
-  return terms;
-}
-
 Vec3 VertexFramePatch::position(double u, double v) const {
   const double u2 = u * u, v2 = v * v;
   Vec3 p = c[0] + u * c[1] + u2 * c[2] + u2 * u * c[3] + v * c[4] + v2 * c[5] + v2 * v * c[6] +
