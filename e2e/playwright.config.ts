@@ -13,7 +13,9 @@ export default defineConfig({
   fullyParallel: true,
   // Each worker runs a chromium with software WebGL: at most one per core, at most 3.
   workers: Number(process.env.PDESURF_E2E_WORKERS) || Math.max(1, Math.min(3, cpus().length)),
-  retries: 0,
+  // One retry in CI: the browser renders in software there, and a timing flake should not
+  // hide the other results; a test that fails twice fails.
+  retries: process.env.CI ? 1 : 0,
   reporter: [['list']],
   use: {
     viewport: { width: 1440, height: 860 },
