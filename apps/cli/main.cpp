@@ -12,7 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "server.hpp"
@@ -74,6 +76,29 @@ std::string count(std::size_t n, const std::string& noun) {
   return fmt::format("{} {}", n, noun == "vertex" ? "vertices" : noun + "s");
 }
 
+/// A model solved and tessellated: what `build` writes and `compare` measures.
+struct BuiltModel {
+  VertexFrameModel model;
+  VertexFrameSurface surface;
+  Mesh mesh;
+  double solveMs = 0.0, tessMs = 0.0;
+};
+
+BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
+                      const SolveArgs& args) {
+  BuiltModel built;
+  built.model = loadVertexFrameModel(modelPath);
+  const SolveOptions options = args.options(built.model);
+  auto t0 = Clock::now();
+  built.surface = solve(built.model, options);
+  built.solveMs = msSince(t0);
+  printNotes(built.surface, modelPath);
+  t0 = Clock::now();
+  built.mesh = tessellate(built.surface, {resolution});
+  built.tessMs = msSince(t0);
+  return built;
+}
+
 int runBuild(const std::string& modelPath, const std::string& outPath, std::uint32_t resolution,
              const SolveArgs& args, bool quiet) {
   try {
@@ -81,16 +106,12 @@ int runBuild(const std::string& modelPath, const std::string& outPath, std::uint
   } catch (const MeshIoError& e) {
     throw UsageError(e.what());
   }
-  const VertexFrameModel model = loadVertexFrameModel(modelPath);
-  const SolveOptions options = args.options(model);
+  const BuiltModel built = buildModel(modelPath, resolution, args);
+  const VertexFrameModel& model = built.model;
+  const VertexFrameSurface& surface = built.surface;
+  const Mesh& mesh = built.mesh;
+  const double solveMs = built.solveMs, tessMs = built.tessMs;
   auto t0 = Clock::now();
-  const VertexFrameSurface surface = solve(model, options);
-  const double solveMs = msSince(t0);
-  printNotes(surface, modelPath);
-  t0 = Clock::now();
-  const Mesh mesh = tessellate(surface, {resolution});
-  const double tessMs = msSince(t0);
-  t0 = Clock::now();
   writeMesh(mesh, outPath);
   const double writeMs = msSince(t0);
   if (!quiet) {
@@ -177,6 +198,167 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
   return 0;
 }
 
+/// JSON that keeps its keys in the order written (slice and compare output).
+using Json = nlohmann::ordered_json;
+
+/// JSON for a point.
+Json pointJson(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
+/// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
+Mesh readTriangles(const std::string& path) {
+  Mesh mesh = readMesh(path);
+  if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
+  return mesh;
+}
+
+/// `pdesurf slice`: each plane's largest closed loop, as JSON.
+struct SliceCommand {
+  std::string meshPath, outPath, axis;
+  std::uint32_t count = 0;
+  std::vector<double> range;
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "slice",
+        "Cut a mesh (OFF, OBJ, PLY, STL) by planes perpendicular to an axis; print each "
+        "plane's largest closed loop as JSON");
+    cmd->add_option("mesh", meshPath, "mesh file: .off .obj .ply .stl")->required();
+    cmd->add_option("--axis", axis, "axis the planes are perpendicular to: x, y or z")
+        ->required()
+        ->check(CLI::IsMember({"x", "y", "z"}));
+    cmd->add_option("--count", count, "number of planes K, evenly spaced")
+        ->required()
+        ->check(CLI::Range(1u, 100000u));
+    cmd->add_option("--range", range,
+                    "planes from a to b, both ends included (default: the mesh's extent cut "
+                    "into K slabs, a plane in the middle of each)")
+        ->expected(2);
+    cmd->add_option("-o,--output", outPath, "write the JSON to this file (whole or not at all)");
+    return cmd;
+  }
+
+  int run() const {
+    SliceOptions options;
+    options.axis = *parseAxis(axis);
+    options.count = count;
+    if (!range.empty()) {
+      options.range = {range[0], range[1]};
+      try {
+        slicePlanes(options, 0.0, 1.0);  // the range's own checks, before any work
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(fmt::format("--range: {}", e.what()));
+      }
+    }
+    const Mesh mesh = readTriangles(meshPath);
+    std::vector<MeshSection> sections;
+    try {
+      sections = sliceMesh(mesh, options);
+    } catch (const MeshSliceError& e) {
+      throw MeshIoError(fmt::format("{}: {}", meshPath, e.what()));
+    }
+    Json planes = Json::array();
+    for (const MeshSection& section : sections) {
+      Json points = Json::array();
+      for (const Vec3& p : section.points) points.push_back(pointJson(p));
+      planes.push_back({{"index", section.index},
+                        {"coordinate", section.coordinate},
+                        {"points", std::move(points)},
+                        {"length", section.length},
+                        {"area", section.area}});
+    }
+    const std::string text =
+        Json{{"axis", axisName(options.axis)}, {"planes", std::move(planes)}}.dump() + "\n";
+    if (outPath.empty())
+      std::cout << text;
+    else
+      writeTextFile(outPath, text);
+    return 0;
+  }
+};
+
+/// `pdesurf compare`: Metro-style distances between a model's mesh and a mesh file.
+struct CompareCommand {
+  std::string modelPath, meshPath;
+  std::uint32_t resolution = 17;
+  std::size_t samples = DistanceOptions{}.samples;
+  bool json = false;
+  SolveArgs solveArgs;
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "compare",
+        "RMS, mean and largest distance between a model (tessellated as by build) and a mesh, "
+        "both ways, relative to the mesh's bounding-box diagonal");
+    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    cmd->add_option("mesh", meshPath, "reference mesh file: .off .obj .ply .stl")->required();
+    cmd->add_option("--resolution", resolution, "samples per patch side, as for build")
+        ->check(CLI::Range(2u, 4097u))
+        ->capture_default_str();
+    cmd->add_option("--samples", samples,
+                    "face samples on each mesh, spread by area (every vertex and every "
+                    "triangle is sampled too)")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
+        ->capture_default_str();
+    cmd->add_flag("--json", json, "print JSON");
+    solveArgs.add(cmd);
+    return cmd;
+  }
+
+  static Json oneWayJson(const OneWayDistance& d) {
+    return {{"samples", d.samples},
+            {"rms", d.rms},
+            {"rms_relative", d.rmsRelative},
+            {"mean", d.mean},
+            {"mean_relative", d.meanRelative},
+            {"max", d.max},
+            {"max_relative", d.maxRelative},
+            {"max_at", pointJson(d.maxAt)},
+            {"cover_radius", d.coverRadius}};
+  }
+
+  int run() const {
+    const BuiltModel built = buildModel(modelPath, resolution, solveArgs);
+    auto t0 = Clock::now();
+    const Mesh mesh = readTriangles(meshPath);
+    const double readMs = msSince(t0);
+    t0 = Clock::now();
+    DistanceOptions options;
+    options.samples = samples;
+    MeshDistance d;
+    try {
+      d = meshDistance(built.mesh, mesh, options);
+    } catch (const std::invalid_argument& e) {
+      throw MeshIoError(fmt::format("{} vs {}: {}", modelPath, meshPath, e.what()));
+    }
+    const double distanceMs = msSince(t0);
+    if (json) {
+      Json j = {{"model", modelPath},
+                {"mesh", meshPath},
+                {"resolution", resolution},
+                {"diagonal", d.diagonal},
+                {"model_to_mesh", oneWayJson(d.aToB)},
+                {"mesh_to_model", oneWayJson(d.bToA)},
+                {"hausdorff", d.hausdorff},
+                {"hausdorff_relative", d.hausdorffRelative}};
+      std::cout << j.dump(2) << '\n';
+      return 0;
+    }
+    auto percent = [](double relative) { return fmt::format("{:.3g}%", 100.0 * relative); };
+    fmt::print(
+        "{}: {} at resolution {}; {}: {}, bounding-box diagonal {:.6g} "
+        "(solve {:.3f} ms, tessellate {:.3f} ms, read {:.1f} ms, distance {:.1f} ms)\n",
+        modelName(built.model, modelPath), count(built.mesh.triangleCount(), "triangle"),
+        resolution, meshPath, count(mesh.triangleCount(), "triangle"), d.diagonal, built.solveMs,
+        built.tessMs, readMs, distanceMs);
+    for (const auto& [label, w] : {std::pair{"model -> mesh", &d.aToB}, {"mesh -> model", &d.bToA}})
+      fmt::print("{}  RMS {:.6g} ({})  mean {:.6g} ({})  max {:.6g} ({})\n", label, w->rms,
+                 percent(w->rmsRelative), w->mean, percent(w->meanRelative), w->max,
+                 percent(w->maxRelative));
+    fmt::print("Hausdorff      {:.6g} ({})\n", d.hausdorff, percent(d.hausdorffRelative));
+    return 0;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -231,6 +413,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   studio->add_option("--host", studioOptions.host, "address to listen on")->capture_default_str();
 
+  SliceCommand sliceCommand;
+  CLI::App* slice = sliceCommand.add(app);
+  CompareCommand compareCommand;
+  CLI::App* compare = compareCommand.add(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -248,6 +435,8 @@ int main(int argc, char** argv) {
     if (*build) return runBuild(modelPath, outPath, resolution, solveArgs, quiet);
     if (*sample) return runSample(modelPath, grid, solveArgs);
     if (*studio) return pdesurf::studio::runStudio(modelPath, studioOptions);
+    if (*slice) return sliceCommand.run();
+    if (*compare) return compareCommand.run();
     return runInfo(modelPath, json, solveArgs);
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

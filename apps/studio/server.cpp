@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <charconv>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -161,6 +163,79 @@ std::string defaultWebDir() {
   return (fs::path(__FILE__).parent_path().parent_path().parent_path() / "web" / "dist").string();
 }
 
+/// Writes the autosave journal on its own thread, so an edit's answer never waits for the
+/// serialisation and the disk. Only the latest model matters: a snapshot still pending when
+/// a newer one arrives is replaced. Writes are atomic (temporary file, then rename).
+class Journal {
+ public:
+  Journal() : thread_([this] { run(); }) {}
+  ~Journal() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();  // run() writes what is pending before it returns
+  }
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
+
+  void write(fs::path path, VertexFrameModel model) {
+    {
+      std::lock_guard lock(mutex_);
+      pending_.emplace(Job{std::move(path), std::move(model)});
+    }
+    wake_.notify_all();
+  }
+
+  /// Drops a pending write and waits for one in progress: afterwards no journal file is
+  /// written until the next write() (call before removing or reading a journal).
+  void cancel() {
+    std::unique_lock lock(mutex_);
+    pending_.reset();
+    idle_.wait(lock, [this] { return !busy_; });
+  }
+
+  /// Waits until every write asked for is on disk.
+  void flush() {
+    std::unique_lock lock(mutex_);
+    idle_.wait(lock, [this] { return !busy_ && !pending_; });
+  }
+
+ private:
+  struct Job {
+    fs::path path;
+    VertexFrameModel model;
+  };
+
+  void run() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [this] { return stop_ || pending_; });
+      if (!pending_) return;  // stopping, nothing left to write
+      Job job = std::move(*pending_);
+      pending_.reset();
+      busy_ = true;
+      lock.unlock();
+      try {
+        writeFileAtomically(job.path, serializeVertexFrameModel(job.model));
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
+      }
+      lock.lock();
+      busy_ = false;
+      idle_.notify_all();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::optional<Job> pending_;
+  bool busy_ = false;
+  bool stop_ = false;
+  std::thread thread_;  // last: started once the members above exist
+};
+
 class StudioServer::Impl {
  public:
   Impl(const std::string& modelPath, StudioOptions options) : options_(std::move(options)) {
@@ -206,6 +281,7 @@ class StudioServer::Impl {
   }
 
   int port() const { return port_; }
+  void flushJournal() { journal_.flush(); }
   std::string url() const { return fmt::format("http://{}:{}/", options_.host, port_); }
   std::string root() const { return root_.string(); }
   std::string webDir() const { return webDir_.string(); }
@@ -269,6 +345,7 @@ class StudioServer::Impl {
 
   /// Loads a model file (throws ModelError, naming it as `source`) and starts a new session.
   void openModel(const fs::path& path, const std::string& source) {
+    journal_.cancel();  // the journal read below must not change underneath
     VertexFrameModel model = parseVertexFrameModel(readFile(path), source);
     const std::string text = serializeVertexFrameModel(model);
     replaceSession(std::move(model));
@@ -292,11 +369,7 @@ class StudioServer::Impl {
   /// recovery is never overwritten (recover or discard it first).
   void autosave() {
     if (recovery_) return;
-    try {
-      writeFileAtomically(autosavePath(path_), serializeVertexFrameModel(session_->model()));
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
-    }
+    journal_.write(autosavePath(path_), session_->model());
   }
 
   void saveTo(const fs::path& path) {
@@ -305,6 +378,7 @@ class StudioServer::Impl {
     } catch (const std::exception& e) {
       fail(500, e.what());
     }
+    journal_.cancel();
     std::error_code ec;
     fs::remove(autosavePath(path), ec);
     if (path != path_) fs::remove(autosavePath(path_), ec);
@@ -436,15 +510,30 @@ class StudioServer::Impl {
                   if (req.has_param("resolution"))
                     resolution = parseUint(req.get_param_value("resolution"), kMinResolution,
                                            kMaxMeshResolution, "resolution");
+                  // The mesh the client already has (X-Mesh-Id of an earlier answer): when
+                  // it is the last one sent and only positions and normals changed, the
+                  // answer is a delta against it.
+                  std::uint64_t base = 0;
+                  if (req.has_param("base"))
+                    base = parseUint(req.get_param_value("base"), 1,
+                                     std::numeric_limits<std::uint32_t>::max(), "base");
                   const SolveOptions options = solveOptions(req);
                   auto t0 = Clock::now();
                   const VertexFrameSurface& surface = session_->surface(options);
                   const double solveMs = msSince(t0);
                   t0 = Clock::now();
-                  const Mesh mesh = tessellate(surface, {resolution});
+                  tessellate(surface, {resolution}, scratch_);
                   const double tessMs = msSince(t0);
                   const C0Report c0 = measureC0Gap(surface);
-                  sendMesh(res, mesh, revision(), resolution);
+                  const bool delta = base != 0 && base == sentId_ && sameTopology(sent_, scratch_);
+                  if (delta)
+                    sendMeshDelta(res, sent_, scratch_, revision(), resolution);
+                  else
+                    sendMesh(res, scratch_, revision(), resolution);
+                  std::swap(sent_, scratch_);
+                  sentId_ = ++meshCounter_;
+                  if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
+                  res.set_header("X-Mesh-Id", std::to_string(sentId_));
                   res.set_header("X-Solve-Ms", fmt::format("{:.3f}", solveMs));
                   res.set_header("X-Tessellate-Ms", fmt::format("{:.3f}", tessMs));
                   res.set_header("X-C0-Gap", fmt::format("{}", c0.maxGap));
@@ -575,6 +664,70 @@ class StudioServer::Impl {
     res.set_content(std::move(body), "application/octet-stream");
   }
 
+  /// Same vertex count and triangles: a delta of positions and normals can update it.
+  static bool sameTopology(const Mesh& a, const Mesh& b) {
+    return a.positions.size() == b.positions.size() && a.normals.size() == b.normals.size() &&
+           a.indices == b.indices;
+  }
+
+  /// The vertices whose position or normal differ between `from` and `to` (same topology),
+  /// as runs [start, start + count); runs closer than kDeltaRunGap vertices are merged (a
+  /// few unchanged vertices cost less than a run).
+  static std::vector<std::uint32_t> changedRuns(const Mesh& from, const Mesh& to) {
+    constexpr std::size_t kDeltaRunGap = 8;
+    const std::size_t v = to.vertexCount();
+    const bool normals = to.normals.size() == 3 * v;
+    const auto differs = [&](std::size_t i) {
+      return std::memcmp(&from.positions[3 * i], &to.positions[3 * i], 12) != 0 ||
+             (normals && std::memcmp(&from.normals[3 * i], &to.normals[3 * i], 12) != 0);
+    };
+    std::vector<std::uint32_t> runs;  // start, count, start, count, ...
+    for (std::size_t i = 0; i < v; ++i) {
+      if (!differs(i)) continue;
+      std::size_t end = i + 1;
+      for (std::size_t gap = 0; end < v && gap <= kDeltaRunGap; ++end)
+        gap = differs(end) ? 0 : gap + 1;
+      while (end > i + 1 && !differs(end - 1)) --end;
+      if (!runs.empty() && i - (runs[runs.size() - 2] + runs.back()) <= kDeltaRunGap) {
+        runs.back() = static_cast<std::uint32_t>(end - runs[runs.size() - 2]);
+      } else {
+        runs.push_back(static_cast<std::uint32_t>(i));
+        runs.push_back(static_cast<std::uint32_t>(end - i));
+      }
+      i = end - 1;
+    }
+    return runs;
+  }
+
+  /// The delta of `to` against `from` (the client's mesh): a header of five uint32 (V, T,
+  /// revision, resolution, run count R), the runs (start, count) as uint32[2R], then the
+  /// positions float32[3C] and normals float32[3C] of the C changed vertices, in run order.
+  static void sendMeshDelta(httplib::Response& res, const Mesh& from, const Mesh& to,
+                            std::uint64_t revision, std::uint32_t resolution) {
+    const std::vector<std::uint32_t> runs = changedRuns(from, to);
+    std::size_t changed = 0;
+    for (std::size_t r = 1; r < runs.size(); r += 2) changed += runs[r];
+    std::string body(20 + 4 * runs.size() + 24 * changed, '\0');
+    char* out = body.data();
+    const std::uint32_t header[5] = {static_cast<std::uint32_t>(to.vertexCount()),
+                                     static_cast<std::uint32_t>(to.triangleCount()),
+                                     static_cast<std::uint32_t>(revision & 0xffffffffu), resolution,
+                                     static_cast<std::uint32_t>(runs.size() / 2)};
+    std::memcpy(out, header, sizeof header);
+    out += sizeof header;
+    std::memcpy(out, runs.data(), 4 * runs.size());
+    out += 4 * runs.size();
+    const bool normals = to.normals.size() == to.positions.size();
+    for (const auto* buffer : {&to.positions, &to.normals})
+      for (std::size_t r = 0; r < runs.size(); r += 2) {
+        const std::size_t bytes = 12 * std::size_t{runs[r + 1]};
+        if (buffer == &to.positions || normals)
+          std::memcpy(out, buffer->data() + 3 * std::size_t{runs[r]}, bytes);
+        out += bytes;
+      }
+    res.set_content(std::move(body), "application/octet-stream");
+  }
+
   StudioOptions options_;
   fs::path root_;
   fs::path webDir_;
@@ -588,6 +741,12 @@ class StudioServer::Impl {
   std::uint64_t base_ = 0;
   std::uint64_t savedRevision_ = 0;
   bool recovery_ = false;
+  // The last mesh sent (GET /api/mesh) and its id; ids are never reused while the server
+  // runs, so a client's `base` names exactly one mesh, across opened models too.
+  Mesh sent_, scratch_;
+  Journal journal_;
+  std::uint64_t sentId_ = 0;
+  std::uint64_t meshCounter_ = 0;
 };
 
 StudioServer::StudioServer(const std::string& modelPath, StudioOptions options)
@@ -600,6 +759,7 @@ std::string StudioServer::url() const { return impl_->url(); }
 std::string StudioServer::root() const { return impl_->root(); }
 std::string StudioServer::modelPath() const { return impl_->modelPath(); }
 std::string StudioServer::webDir() const { return impl_->webDir(); }
+void StudioServer::flushJournal() { impl_->flushJournal(); }
 
 int runStudio(const std::string& modelPath, const StudioOptions& options) {
   // SIGINT and SIGTERM are taken by sigwait below: blocked before any server thread

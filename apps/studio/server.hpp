@@ -55,6 +55,9 @@ class StudioServer {
   std::string modelPath() const;
   /// The folder of the front-end served at `/`, or empty when it is not built.
   std::string webDir() const;
+  /// Waits until the autosave journal holds every accepted change (it is written on its
+  /// own thread, so edits never wait for the disk; the destructor waits too).
+  void flushJournal();
 
  private:
   class Impl;

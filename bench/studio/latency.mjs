@@ -123,9 +123,10 @@ function watchFrames() {
     const mesh = window.__studio.state().mesh;
     if (mesh !== T.lastMesh) {
       const f = { raf: performance.now(), ts, revision: mesh };
-      // Step mode: also the time the GPU (SwiftShader) has drawn it.
+      // Step mode: also the time the GPU (SwiftShader) has drawn it: reading a pixel
+      // waits for the draw (gl.finish() does not, in Chromium's GPU process).
       if (T.finish && gl) {
-        gl.finish();
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
         f.drawn = performance.now();
       }
       T.frames.push(f);

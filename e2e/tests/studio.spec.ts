@@ -49,6 +49,9 @@ test('drag a vertex: the model and the surface change; undo and redo', async ({ 
   const imageAfter = await surface(page).screenshot();
   expect(imageAfter.equals(imageBefore)).toBe(false);
   await page.screenshot({ path: shot('dragged.png') });
+  // The page patched its mesh with deltas during the drag: it is the server's whole mesh.
+  expect(await page.evaluate(() => (window as any).__studio.state().meshDeltas)).toBeGreaterThan(0);
+  expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
 
   // The coordinate inputs show the moved vertex.
   expect(Number(await page.getByTestId('vertex-z').inputValue())).toBeCloseTo(moved[2], 3);

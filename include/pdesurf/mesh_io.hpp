@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "pdesurf/mesh.hpp"
 
@@ -26,6 +27,10 @@ MeshFormat meshFormatFromPath(const std::string& path);
 /// OBJ, PLY and glb carry the normals; STL carries per-triangle facet normals.
 /// Throws MeshIoError (and leaves no file) on failure.
 void writeMesh(const Mesh& mesh, const std::string& path);
+
+/// Writes `text` to `path` whole or not at all, as writeMesh writes a mesh: for the text
+/// outputs derived from meshes (slices as JSON). Throws MeshIoError (and leaves no file).
+void writeTextFile(const std::string& path, std::string_view text);
 
 /// Reads a mesh written by writeMesh, or an ASCII OFF file (as in CGAL's data sets).
 /// Polygons with more than three corners are fanned into triangles. STL files are

@@ -1199,6 +1199,12 @@ void writeMesh(const Mesh& mesh, const std::string& path) {
   file.commit();
 }
 
+void writeTextFile(const std::string& path, std::string_view text) {
+  AtomicFileWriter file(path);
+  file.bytes(text.data(), text.size());
+  file.commit();
+}
+
 Mesh readMesh(const std::string& path) {
   const MeshFormat format = meshFormatFromPath(path);
   const std::string data = readFile(path);

@@ -224,6 +224,73 @@ TEST_F(StudioServerTest, EditChangesRevisionAndMesh) {
   }
 }
 
+/// Applies a delta answer (X-Mesh-Base) to the mesh it was made against.
+void applyDelta(MeshData& m, const std::string& body) {
+  std::uint32_t header[5];
+  ASSERT_GE(body.size(), sizeof header);
+  std::memcpy(header, body.data(), sizeof header);
+  ASSERT_EQ(header[0], m.vertexCount);
+  ASSERT_EQ(header[1], m.triangleCount);
+  m.revision = header[2];
+  m.resolution = header[3];
+  std::vector<std::uint32_t> runs(2 * std::size_t{header[4]});
+  std::memcpy(runs.data(), body.data() + sizeof header, 4 * runs.size());
+  std::size_t changed = 0;
+  for (std::size_t r = 0; r < runs.size(); r += 2) {
+    ASSERT_LE(std::size_t{runs[r]} + runs[r + 1], m.vertexCount);
+    if (r > 0) ASSERT_GT(runs[r], runs[r - 2] + runs[r - 1]) << "runs overlap or touch";
+    changed += runs[r + 1];
+  }
+  ASSERT_EQ(body.size(), sizeof header + 4 * runs.size() + 24 * changed);
+  const char* p = body.data() + sizeof header + 4 * runs.size();
+  for (auto* buffer : {&m.positions, &m.normals})
+    for (std::size_t r = 0; r < runs.size(); r += 2) {
+      std::memcpy(buffer->data() + 3 * std::size_t{runs[r]}, p, 12 * std::size_t{runs[r + 1]});
+      p += 12 * std::size_t{runs[r + 1]};
+    }
+}
+
+TEST_F(StudioServerTest, MeshDeltaAgainstTheClientsMeshGivesTheNewMesh) {
+  auto r0 = get("/api/mesh?resolution=9");
+  ASSERT_TRUE(r0 && r0->status == 200);
+  EXPECT_FALSE(r0->has_header("X-Mesh-Base"));
+  const std::string id0 = r0->get_header_value("X-Mesh-Id");
+  ASSERT_FALSE(id0.empty());
+  MeshData client = parseMesh(r0->body);
+
+  ASSERT_EQ(post("/api/edit", move(0, -0.1, -0.2, 0.4))->status, 200);
+  auto r1 = get("/api/mesh?resolution=9&base=" + id0);
+  ASSERT_TRUE(r1 && r1->status == 200);
+  ASSERT_EQ(r1->get_header_value("X-Mesh-Base"), id0);
+  const std::string id1 = r1->get_header_value("X-Mesh-Id");
+  EXPECT_NE(id1, id0);
+  applyDelta(client, r1->body);
+  EXPECT_LT(r1->body.size(), r0->body.size() / 2) << "a corner move changes a few patches";
+
+  // The whole mesh of the same revision (no base) is what the delta made of the old one.
+  auto full = get("/api/mesh?resolution=9");
+  ASSERT_TRUE(full && full->status == 200);
+  EXPECT_FALSE(full->has_header("X-Mesh-Base"));
+  const MeshData expected = parseMesh(full->body);
+  EXPECT_EQ(client.revision, 1u);
+  EXPECT_EQ(client.positions, expected.positions);
+  EXPECT_EQ(client.normals, expected.normals);
+  EXPECT_EQ(client.indices, expected.indices);
+
+  // A base that is not the last mesh sent (id1 was followed by `full`), or another
+  // resolution, gets the whole mesh.
+  auto stale = get("/api/mesh?resolution=9&base=" + id1);
+  ASSERT_TRUE(stale && stale->status == 200);
+  EXPECT_FALSE(stale->has_header("X-Mesh-Base"));
+  EXPECT_EQ(parseMesh(stale->body).positions, expected.positions);
+  auto other = get("/api/mesh?resolution=5&base=" + stale->get_header_value("X-Mesh-Id"));
+  ASSERT_TRUE(other && other->status == 200);
+  EXPECT_FALSE(other->has_header("X-Mesh-Base"));
+  EXPECT_EQ(parseMesh(other->body).resolution, 5u);
+  EXPECT_EQ(failure(get("/api/mesh?base=x")).first, 400);
+  EXPECT_EQ(failure(get("/api/mesh?base=0")).first, 400);
+}
+
 TEST_F(StudioServerTest, DragUndoesInOneStep) {
   const Json original = model()["model"];
   for (int i = 0; i < 10; ++i) {
@@ -273,6 +340,7 @@ TEST_F(StudioServerTest, InvalidEditsAreRefusedWithTheirJsonPath) {
   const Json now = model();
   EXPECT_EQ(now["model"], original["model"]);
   EXPECT_EQ(now["revision"], original["revision"]);
+  server_->flushJournal();
   EXPECT_FALSE(fs::exists(root_ / "grid.json.autosave"));
 }
 
@@ -351,6 +419,7 @@ TEST_F(StudioServerTest, SaveThenReopenGivesTheSameModel) {
   ASSERT_EQ(
       post("/api/edit", R"({"op": "set-parameters", "frames": [0, 3], "a1": [2, 2, 2]})")->status,
       200);
+  server_->flushJournal();
   ASSERT_TRUE(fs::exists(root_ / "grid.json.autosave"));
   const Json edited = model();
   const auto saved = post("/api/save");
@@ -386,6 +455,7 @@ TEST_F(StudioServerTest, AutosaveRecoversAfterACrash) {
   ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.9))->status, 200);
   ASSERT_EQ(post("/api/edit", move(6, 0.5, 0.5, -0.4))->status, 200);
   const Json edited = model()["model"];
+  server_->flushJournal();
   ASSERT_TRUE(fs::exists(root_ / "grid.json.autosave"));
   crashAndRestart();
   Json m = model();

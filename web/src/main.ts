@@ -2,7 +2,7 @@
 // api.ts. The server holds the model; the page keeps a copy that it updates as it sends
 // edits (so a drag is smooth) and reloads after undo, redo, open and any refused edit.
 import './style.css';
-import { api, ApiError } from './api';
+import { api, applyDelta, ApiError } from './api';
 import type { Edit, FrameForce, MeshData, Model, ModelState, Region, SharedForce, Status, Vec3 } from './api';
 import { FrameView, SurfaceView, modelBox } from './scene';
 
@@ -87,6 +87,7 @@ function formatGap(gap: number): string {
 // The mesh: one request in flight, the latest revision fetched after it
 
 let meshBusy = false;
+let meshDeltas = 0; // meshes that came as deltas (tests)
 let meshAgain = false;
 
 async function requestMesh(): Promise<void> {
@@ -96,13 +97,25 @@ async function requestMesh(): Promise<void> {
   }
   meshBusy = true;
   try {
+    let whole = false; // after a delta that did not fit: ask for the whole mesh
     do {
       meshAgain = false;
       const resolution = Number($<HTMLSelectElement>('resolution').value);
-      const mesh = await api.mesh({ resolution });
-      state.mesh = mesh;
+      const base = !whole && state.mesh?.resolution === resolution ? state.mesh.id : undefined;
+      whole = false;
+      const answer = await api.mesh({ resolution, base });
+      if (answer.kind === 'delta') {
+        if (!state.mesh || !applyDelta(state.mesh, answer)) {
+          whole = meshAgain = true;
+          continue;
+        }
+        surfaceView.updateVertices(answer.runs);
+        ++meshDeltas;
+      } else {
+        state.mesh = answer;
+        surfaceView.setMesh(answer);
+      }
       state.meshStale = false;
-      surfaceView.setMesh(mesh);
       renderStatus();
     } while (meshAgain);
   } catch (e) {
@@ -244,7 +257,7 @@ async function reloadAll(fit = false): Promise<void> {
 function refreshScene(): void {
   if (!state.model) return;
   frameView.setModel(state.model, state.selectedVertex, state.selectedFrames);
-  surfaceView.overlay.update(state.model, state.selectedFrames);
+  surfaceView.updateOverlay(state.model, state.selectedFrames);
 }
 
 async function refreshFiles(): Promise<void> {
@@ -304,7 +317,8 @@ canvas.addEventListener('pointermove', (ev) => {
   const target = frameView.dragTarget(state.model.vertices[vertex], ev.clientX, ev.clientY);
   if (!target) return;
   state.model.vertices[vertex] = target;
-  refreshScene();
+  frameView.moveVertex(vertex, target);
+  surfaceView.moveOverlayVertex(vertex, target);
   renderVertexInputs();
   pump.push(() => ({ op: 'move-vertex', vertex, position: [...state.model!.vertices[vertex]] as Vec3 }));
 });
@@ -744,8 +758,8 @@ $<HTMLInputElement>('overlay').addEventListener('change', (ev) =>
 // Start
 
 function frame(): void {
-  frameView.render();
-  surfaceView.render();
+  frameView.renderIfNeeded();
+  surfaceView.renderIfNeeded();
   requestAnimationFrame(frame);
 }
 
@@ -761,7 +775,20 @@ window.__studio = {
   frameScreen: (f: number) => frameView.frameScreen(f),
   edit: (edit: Edit) => pump.once('test', () => edit).then(() => state.error),
   idle: () => pump.idle(),
-  state: () => ({ revision: state.status?.revision, mesh: state.mesh?.revision, error: state.error }),
+  /** Whether the page's mesh (updated by deltas) equals the whole mesh the server makes now. */
+  meshMatchesServer: async () => {
+    const m = state.mesh;
+    if (!m) return false;
+    const full = await api.mesh({ resolution: m.resolution });
+    if (full.kind !== 'full' || full.revision !== m.revision) return false;
+    const same = (a: ArrayLike<number>, b: ArrayLike<number>) => a.length === b.length && Array.prototype.every.call(a, (x: number, i: number) => x === b[i]);
+    return same(full.positions, m.positions) && same(full.normals, m.normals) && same(full.indices, m.indices);
+  },
+  renderTimes: (n: number) => ({
+    frames: Array.from({ length: n }, () => frameView.renderTimed()),
+    surface: Array.from({ length: n }, () => surfaceView.renderTimed()),
+  }),
+  state: () => ({ revision: state.status?.revision, mesh: state.mesh?.revision, error: state.error, meshDeltas }),
 };
 
 renderPanel();

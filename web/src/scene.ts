@@ -6,6 +6,26 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { MeshData, Model, Vec3 } from './api';
 
 const FRAME_EDGES = 8;
+/** Above this many changed runs a delta uploads the whole buffer instead. */
+const MAX_UPLOAD_RANGES = 256;
+
+/** Whether WebGL runs on the CPU (SwiftShader, llvmpipe): there multisampling triples the
+ * cost of a frame, so the views draw without it. */
+function softwareWebGL(): boolean {
+  const gl = document.createElement('canvas').getContext('webgl2');
+  if (!gl) return false;
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  const name = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
+  gl.getExtension('WEBGL_lose_context')?.loseContext();
+  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+}
+
+/** Antialiasing: off on software WebGL unless the page is opened with ?aa=1 (?aa=0 turns
+ * it off everywhere). */
+const ANTIALIAS = (() => {
+  const aa = new URLSearchParams(location.search).get('aa');
+  return aa === null ? !softwareWebGL() : aa !== '0';
+})();
 
 /** A canvas with its renderer, scene, camera and orbit controls, rendered every frame. */
 export class Viewport {
@@ -15,7 +35,7 @@ export class Viewport {
   controls!: OrbitControls;
 
   constructor(readonly container: HTMLElement) {
-    this.renderer = new THREE.WebGLRenderer({ antialias: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: ANTIALIAS });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.renderer.setClearColor(0xf4f5f7);
     this.container.appendChild(this.renderer.domElement);
@@ -34,6 +54,7 @@ export class Viewport {
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.enableDamping = true;
     this.controls.dampingFactor = 0.15;
+    this.controls.addEventListener('change', () => this.invalidate());
   }
 
   resize(): void {
@@ -44,6 +65,7 @@ export class Viewport {
     this.renderer.domElement.style.height = '100%';
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.invalidate();
   }
 
   /** Looks at a box from the front-right, above (z is up), near enough that its corners
@@ -78,11 +100,34 @@ export class Viewport {
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(center);
     this.controls.update();
+    this.invalidate();
   }
 
-  render(): void {
-    this.controls.update();
+  private dirty = true;
+
+  /** Asks for a render in the next animation frame (the views draw only on change). */
+  invalidate(): void {
+    this.dirty = true;
+  }
+
+  /** Renders if anything changed since the last render (the camera moved, or the scene
+   * was invalidated); returns whether it rendered. */
+  renderIfNeeded(): boolean {
+    if (this.controls.update()) this.dirty = true; // damping still moving the camera
+    if (!this.dirty) return false;
+    this.dirty = false;
     this.renderer.render(this.scene, this.camera);
+    return true;
+  }
+
+  /** Renders now and waits for the GPU to finish; the milliseconds it took (benchmarks). */
+  renderTimed(): number {
+    const t0 = performance.now();
+    this.renderer.render(this.scene, this.camera);
+    // Reading a pixel waits for the (GPU process') draw to end; gl.finish() does not.
+    const gl = this.renderer.getContext();
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+    return performance.now() - t0;
   }
 
   /** A world point in client (page) pixels, and whether it lies in front of the camera. */
@@ -116,18 +161,6 @@ export function modelBox(model: Model): THREE.Box3 {
   return box;
 }
 
-/** The median length of the frames' polyline edges. */
-function medianEdge(model: Model): number {
-  const lengths: number[] = [];
-  for (const frame of model.frames)
-    for (let e = 0; e < FRAME_EDGES; ++e) {
-      const a = model.vertices[frame.vertices[e]], b = model.vertices[frame.vertices[(e + 1) % FRAME_EDGES]];
-      lengths.push(Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
-    }
-  lengths.sort((x, y) => x - y);
-  return lengths.length ? Math.max(lengths[lengths.length >> 1], 1e-6) : 1;
-}
-
 const FRAME_COLOR = new THREE.Color(0x3d5a80);
 const FRAME_SELECTED = new THREE.Color(0xee6c4d);
 const HANDLE_COLOR = new THREE.Color(0x293241);
@@ -138,6 +171,9 @@ export class FrameLines {
   readonly object: THREE.LineSegments;
   private positions = new Float32Array(0);
   private colors = new Float32Array(0);
+  // The line vertices ("slots") of each model vertex, CSR: slots[first[i] .. first[i+1]).
+  private first = new Uint32Array(0);
+  private slots = new Uint32Array(0);
 
   constructor(opacity = 1) {
     const material = new THREE.LineBasicMaterial({
@@ -172,23 +208,123 @@ export class FrameLines {
         }
       }
     });
+    this.indexSlots(model);
     const g = this.object.geometry;
     g.getAttribute('position').needsUpdate = true;
     g.getAttribute('color').needsUpdate = true;
     g.computeBoundingSphere();
+  }
+
+  private indexSlots(model: Model): void {
+    const first = new Uint32Array(model.vertices.length + 1);
+    for (const frame of model.frames) for (const v of frame.vertices) first[v + 1] += 2;
+    for (let i = 0; i < model.vertices.length; ++i) first[i + 1] += first[i];
+    const fill = first.slice(0, -1);
+    const slots = new Uint32Array(first[model.vertices.length]);
+    let k = 0;
+    for (const frame of model.frames)
+      for (let e = 0; e < FRAME_EDGES; ++e) {
+        slots[fill[frame.vertices[e]]++] = k++;
+        slots[fill[frame.vertices[(e + 1) % FRAME_EDGES]]++] = k++;
+      }
+    this.first = first;
+    this.slots = slots;
+  }
+
+  /** Moves one vertex of the model last given to update(): only its line ends change. */
+  moveVertex(vertex: number, p: Vec3): void {
+    const attribute = this.object.geometry.getAttribute('position') as THREE.BufferAttribute;
+    for (let s = this.first[vertex]; s < this.first[vertex + 1]; ++s) {
+      const k = this.slots[s];
+      this.positions.set(p, 3 * k);
+      attribute.addUpdateRange(3 * k, 3);
+    }
+    attribute.needsUpdate = true;
+  }
+}
+
+const HANDLE_VERTEX = /* glsl */ `
+attribute float handleSize;
+attribute vec3 handleColor;
+varying vec3 vColor;
+void main() {
+  vColor = handleColor;
+  gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+  gl_PointSize = handleSize;
+}`;
+
+// A lit ball drawn in a point sprite: as cheap as a point, read as a handle.
+const HANDLE_FRAGMENT = /* glsl */ `
+varying vec3 vColor;
+void main() {
+  vec2 d = gl_PointCoord * 2.0 - 1.0;
+  float r2 = dot(d, d);
+  if (r2 > 1.0) discard;
+  vec3 n = vec3(d.x, -d.y, sqrt(1.0 - r2));
+  float light = 0.55 + 0.45 * max(dot(n, normalize(vec3(-0.4, 0.5, 0.8))), 0.0);
+  gl_FragColor = vec4(vColor * light + vec3(0.35) * pow(n.z, 12.0), 1.0);
+}`;
+
+/** Handle diameters in CSS pixels. */
+const HANDLE_PIXELS = 9;
+const HANDLE_SELECTED_PIXELS = 14;
+
+/** Vertex handles: one point sprite per model vertex, a constant size on screen (a 3,000
+ * vertex model costs 3,000 points, not 3,000 spheres). */
+class Handles {
+  readonly object: THREE.Points;
+  private positions = new Float32Array(0);
+  private sizes = new Float32Array(0);
+  private colors = new Float32Array(0);
+
+  constructor(private readonly pixelRatio: number) {
+    const material = new THREE.ShaderMaterial({ vertexShader: HANDLE_VERTEX, fragmentShader: HANDLE_FRAGMENT });
+    this.object = new THREE.Points(new THREE.BufferGeometry(), material);
+    this.object.frustumCulled = false;
+    this.object.renderOrder = 3;
+  }
+
+  update(model: Model, selected: number | null): void {
+    const n = model.vertices.length;
+    const g = this.object.geometry;
+    if (this.sizes.length !== n) {
+      this.positions = new Float32Array(3 * n);
+      this.sizes = new Float32Array(n);
+      this.colors = new Float32Array(3 * n);
+      g.setAttribute('position', new THREE.BufferAttribute(this.positions, 3));
+      g.setAttribute('handleSize', new THREE.BufferAttribute(this.sizes, 1));
+      g.setAttribute('handleColor', new THREE.BufferAttribute(this.colors, 3));
+    }
+    model.vertices.forEach((p, i) => this.positions.set(p, 3 * i));
+    for (let i = 0; i < n; ++i) this.style(i, i === selected);
+    for (const name of ['position', 'handleSize', 'handleColor']) g.getAttribute(name).needsUpdate = true;
+  }
+
+  private style(i: number, selected: boolean): void {
+    this.sizes[i] = (selected ? HANDLE_SELECTED_PIXELS : HANDLE_PIXELS) * this.pixelRatio;
+    const c = selected ? HANDLE_SELECTED : HANDLE_COLOR;
+    this.colors.set([c.r, c.g, c.b], 3 * i);
+  }
+
+  moveVertex(vertex: number, p: Vec3): void {
+    const attribute = this.object.geometry.getAttribute('position') as THREE.BufferAttribute;
+    this.positions.set(p, 3 * vertex);
+    attribute.addUpdateRange(3 * vertex, 3);
+    attribute.needsUpdate = true;
   }
 }
 
 /** The left view: vertex handles and frame polylines, with screen-space picking. */
 export class FrameView extends Viewport {
   readonly lines = new FrameLines();
-  private handles: THREE.InstancedMesh | null = null;
-  private handleRadius = 0.01;
+  private readonly handles: Handles;
   private model: Model | null = null;
 
   constructor(container: HTMLElement) {
     super(container);
+    this.handles = new Handles(this.renderer.getPixelRatio());
     this.scene.add(this.lines.object);
+    this.scene.add(this.handles.object);
     const grid = new THREE.GridHelper(1, 10, 0xc9ced6, 0xdfe3e8);
     grid.rotation.x = Math.PI / 2;
     grid.name = 'grid';
@@ -196,25 +332,10 @@ export class FrameView extends Viewport {
   }
 
   setModel(model: Model, selectedVertex: number | null, selectedFrames: ReadonlySet<number>): void {
+    const resized = !this.model || this.model.vertices.length !== model.vertices.length;
     this.model = model;
-    const count = model.vertices.length;
-    if (!this.handles || this.handles.count !== count) {
-      if (this.handles) {
-        this.scene.remove(this.handles);
-        this.handles.geometry.dispose();
-      }
+    if (resized) {
       const box = modelBox(model);
-      this.handleRadius = Math.min(
-        Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3) * 0.009,
-        0.12 * medianEdge(model),
-      );
-      this.handles = new THREE.InstancedMesh(
-        new THREE.SphereGeometry(1, 16, 12),
-        new THREE.MeshStandardMaterial({ roughness: 0.5, metalness: 0.1 }),
-        count,
-      );
-      this.handles.frustumCulled = false;
-      this.scene.add(this.handles);
       const grid = this.scene.getObjectByName('grid');
       if (grid) {
         const size = box.getSize(new THREE.Vector3());
@@ -223,16 +344,16 @@ export class FrameView extends Viewport {
         grid.position.set(...box.getCenter(new THREE.Vector3()).toArray().slice(0, 2) as [number, number], box.min.z);
       }
     }
-    const m = new THREE.Matrix4();
-    for (let i = 0; i < count; ++i) {
-      const r = i === selectedVertex ? this.handleRadius * 1.6 : this.handleRadius;
-      m.makeScale(r, r, r).setPosition(...model.vertices[i]);
-      this.handles.setMatrixAt(i, m);
-      this.handles.setColorAt(i, i === selectedVertex ? HANDLE_SELECTED : HANDLE_COLOR);
-    }
-    this.handles.instanceMatrix.needsUpdate = true;
-    if (this.handles.instanceColor) this.handles.instanceColor.needsUpdate = true;
+    this.handles.update(model, selectedVertex);
     this.lines.update(model, selectedFrames);
+    this.invalidate();
+  }
+
+  /** Moves one vertex of the model shown (a drag): its handle and its line ends. */
+  moveVertex(vertex: number, p: Vec3): void {
+    this.handles.moveVertex(vertex, p);
+    this.lines.moveVertex(vertex, p);
+    this.invalidate();
   }
 
   /** The vertex whose handle is nearest a client point (within `pixels`), front-most first. */
@@ -383,13 +504,41 @@ export class SurfaceView extends Viewport {
     g.computeBoundingSphere();
     this.mesh.geometry.dispose();
     this.mesh.geometry = g;
+    this.invalidate();
   }
 
   setZebra(on: boolean): void {
     this.mesh.material = on ? this.zebra : this.shaded;
+    this.invalidate();
   }
 
   setOverlay(on: boolean): void {
     this.overlay.object.visible = on;
+    this.invalidate();
+  }
+
+  /** New positions and normals of the vertex runs (start, count) of the mesh last given to
+   * setMesh, already written into its arrays (a delta from the server). */
+  updateVertices(runs: Uint32Array): void {
+    const g = this.mesh.geometry;
+    for (const name of ['position', 'normal']) {
+      const attribute = g.getAttribute(name) as THREE.BufferAttribute;
+      // Many small uploads cost more than one big one.
+      if (runs.length <= 2 * MAX_UPLOAD_RANGES)
+        for (let r = 0; r < runs.length; r += 2) attribute.addUpdateRange(3 * runs[r], 3 * runs[r + 1]);
+      else attribute.clearUpdateRanges();
+      attribute.needsUpdate = true;
+    }
+    this.invalidate();
+  }
+
+  moveOverlayVertex(vertex: number, p: Vec3): void {
+    this.overlay.moveVertex(vertex, p);
+    this.invalidate();
+  }
+
+  updateOverlay(model: Model, selectedFrames: ReadonlySet<number>): void {
+    this.overlay.update(model, selectedFrames);
+    this.invalidate();
   }
 }

@@ -1,0 +1,89 @@
+// Benchmarks of the mesh tools: slicing CGAL's elephant (libcgal-demo, through
+// scripts/cgal_data) and mesh-to-mesh distances with CGAL AABB trees.
+#include <benchmark/benchmark.h>
+
+#include <stdio.h>
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "pdesurf/mesh_distance.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/mesh_slice.hpp"
+
+namespace {
+
+using namespace pdesurf;
+
+/// elephant.off, extracted by scripts/cgal_data into build/cgal-data (this file's
+/// repository); throws with the script's message when libcgal-demo is missing.
+const Mesh& elephant() {
+  static const Mesh mesh = [] {
+    const std::filesystem::path root = std::filesystem::path(__FILE__).parent_path().parent_path();
+    const std::string command = "'" + (root / "scripts/cgal_data").string() + "' elephant.off";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (pipe == nullptr) throw std::runtime_error("cannot run " + command);
+    char buffer[4096] = {};
+    const std::size_t n = std::fread(buffer, 1, sizeof buffer - 1, pipe);
+    if (::pclose(pipe) != 0 || n == 0) throw std::runtime_error(command + " failed");
+    std::string path(buffer, n);
+    while (!path.empty() && path.back() == '\n') path.pop_back();
+    return readMesh(path);
+  }();
+  return mesh;
+}
+
+/// A latitude-longitude sphere of radius r with about 2 n² triangles.
+Mesh sphere(int n, double r) {
+  Mesh m;
+  auto vertex = [&](double x, double y, double z) {
+    m.positions.insert(m.positions.end(),
+                       {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+  };
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const double phi = M_PI * i / n - M_PI / 2, a = M_PI * j / n;
+      vertex(r * std::cos(phi) * std::cos(a), r * std::cos(phi) * std::sin(a), r * std::sin(phi));
+    }
+  auto at = [&](int i, int j) { return static_cast<std::uint32_t>(i * 2 * n + (j % (2 * n))); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2 * n; ++j)
+      m.indices.insert(m.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i, j),
+                                         at(i + 1, j + 1), at(i + 1, j)});
+  return m;
+}
+
+/// The elephant (5558 triangles) cut by 100 planes along z.
+void BM_SliceElephant(benchmark::State& state) {
+  const Mesh& mesh = elephant();
+  SliceOptions options;
+  options.count = static_cast<std::uint32_t>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(sliceMesh(mesh, options));
+  state.counters["planes"] = static_cast<double>(options.count);
+}
+BENCHMARK(BM_SliceElephant)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+
+/// The elephant against a copy scaled by 1.01, both ways, default sampling (100000 face
+/// samples per mesh).
+void BM_DistanceElephant(benchmark::State& state) {
+  const Mesh& a = elephant();
+  Mesh b = a;
+  for (float& x : b.positions) x *= 1.01f;
+  for (auto _ : state) benchmark::DoNotOptimize(meshDistance(a, b));
+}
+BENCHMARK(BM_DistanceElephant)->Unit(benchmark::kMillisecond);
+
+/// Two spheres of about 2 n² triangles each, both ways, default sampling.
+void BM_DistanceSpheres(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const Mesh a = sphere(n, 1.0), b = sphere(n + 1, 1.05);
+  for (auto _ : state) benchmark::DoNotOptimize(meshDistance(a, b));
+  state.counters["triangles"] = static_cast<double>(a.triangleCount());
+}
+BENCHMARK(BM_DistanceSpheres)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
