@@ -6,6 +6,8 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -16,8 +18,10 @@
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/model_io.hpp"
+#include "pdesurf/spectral_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "server.hpp"
+#include "spectral_commands.hpp"
 
 namespace {
 
@@ -64,8 +68,8 @@ void printNotes(const VertexFrameSurface& surface, const std::string& model) {
   for (const std::string& note : surface.notes) fmt::print(stderr, "{}: note: {}\n", model, note);
 }
 
-std::string modelName(const VertexFrameModel& model, const std::string& path) {
-  if (!model.name.empty()) return model.name;
+std::string modelName(const std::string& name, const std::string& path) {
+  if (!name.empty()) return name;
   const auto slash = path.find_last_of('/');
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
@@ -73,13 +77,15 @@ std::string modelName(const VertexFrameModel& model, const std::string& path) {
 /// "1 frame", "2 frames", "1 vertex", "3 vertices".
 std::string count(std::size_t n, const std::string& noun) {
   if (n == 1) return "1 " + noun;
-  return fmt::format("{} {}", n, noun == "vertex" ? "vertices" : noun + "s");
+  if (noun == "vertex") return fmt::format("{} vertices", n);
+  return fmt::format("{} {}{}", n, noun, noun.ends_with("ch") ? "es" : "s");
 }
 
-/// A model solved and tessellated: what `build` writes and `compare` measures.
+/// A model of any type solved and tessellated: what `build` writes and `compare` measures.
 struct BuiltModel {
-  VertexFrameModel model;
-  VertexFrameSurface surface;
+  std::string name;
+  std::string summary;  ///< "3 frames, 2 strips" / "spectral, order 12, 1 patch"
+  std::string quality;  ///< "C0 gap 0" / "condition error 1e-15" / "joint C0 gap 0"
   Mesh mesh;
   double solveMs = 0.0, tessMs = 0.0;
 };
@@ -87,15 +93,51 @@ struct BuiltModel {
 BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
                       const SolveArgs& args) {
   BuiltModel built;
-  built.model = loadVertexFrameModel(modelPath);
-  const SolveOptions options = args.options(built.model);
+  const AnyModel any = loadModel(modelPath);
+  if (const auto* model = std::get_if<VertexFrameModel>(&any)) {
+    built.name = modelName(model->name, modelPath);
+    const SolveOptions options = args.options(*model);
+    auto t0 = Clock::now();
+    const VertexFrameSurface surface = solve(*model, options);
+    built.solveMs = msSince(t0);
+    printNotes(surface, modelPath);
+    t0 = Clock::now();
+    built.mesh = tessellate(surface, {resolution});
+    built.tessMs = msSince(t0);
+    built.summary = fmt::format("{}, {}", count(model->frames.size(), "frame"),
+                                count(surface.topology->stripCount, "strip"));
+    built.quality = fmt::format("C0 gap {:.3g}", measureC0Gap(surface).maxGap);
+    return built;
+  }
   auto t0 = Clock::now();
-  built.surface = solve(built.model, options);
+  const SolvedSpectral solved = std::visit(
+      [&](const auto& m) -> SolvedSpectral {
+        using T = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<T, VertexFrameModel>)
+          throw std::logic_error("unreachable");
+        else {
+          built.name = modelName(m.name, modelPath);
+          return solveSpectralModel(m, modelPath);
+        }
+      },
+      any);
   built.solveMs = msSince(t0);
-  printNotes(built.surface, modelPath);
   t0 = Clock::now();
-  built.mesh = tessellate(built.surface, {resolution});
+  built.mesh = tessellate(solved, resolution);
   built.tessMs = msSince(t0);
+  const SpectralPatch& first = solved.patchAt(0);
+  built.summary =
+      fmt::format("{}, order {}, {} mode{}, {}", solved.type, first.op().order(), first.modes(),
+                  first.modes() == 1 ? "" : "s", count(solved.patchCount(), "patch"));
+  double worst = 0.0;
+  for (std::size_t k = 0; k < solved.patchCount(); ++k)
+    for (double e : conditionErrors(solved.patchAt(k))) worst = std::max(worst, e);
+  built.quality = fmt::format("condition error {:.3g}", worst);
+  if (solved.chain) {
+    double gap = 0.0;
+    for (const JointGap& g : measureJointGaps(*solved.chain)) gap = std::max(gap, g.c0Relative);
+    built.quality += fmt::format(", joint C0 gap {:.3g}", gap);
+  }
   return built;
 }
 
@@ -107,27 +149,43 @@ int runBuild(const std::string& modelPath, const std::string& outPath, std::uint
     throw UsageError(e.what());
   }
   const BuiltModel built = buildModel(modelPath, resolution, args);
-  const VertexFrameModel& model = built.model;
-  const VertexFrameSurface& surface = built.surface;
   const Mesh& mesh = built.mesh;
-  const double solveMs = built.solveMs, tessMs = built.tessMs;
   auto t0 = Clock::now();
   writeMesh(mesh, outPath);
   const double writeMs = msSince(t0);
-  if (!quiet) {
-    const C0Report c0 = measureC0Gap(surface);
+  if (!quiet)
     fmt::print(
-        "{}: {}, {}, {}, {}, C0 gap {:.3g} -> {} "
+        "{}: {}, {}, {}, {} -> {} "
         "(solve {:.3f} ms, tessellate {:.3f} ms, write {:.1f} ms)\n",
-        modelName(model, modelPath), count(model.frames.size(), "frame"),
-        count(surface.topology->stripCount, "strip"), count(mesh.vertexCount(), "vertex"),
-        count(mesh.triangleCount(), "triangle"), c0.maxGap, outPath, solveMs, tessMs, writeMs);
-  }
+        built.name, built.summary, count(mesh.vertexCount(), "vertex"),
+        count(mesh.triangleCount(), "triangle"), built.quality, outPath, built.solveMs,
+        built.tessMs, writeMs);
   return 0;
 }
 
+/// A spectral or cross-section model solved (errors name the file), or nothing for a
+/// vertex-frame model.
+std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& any, const std::string& path,
+                                              std::string& name) {
+  if (const auto* m = std::get_if<SpectralModel>(&any)) {
+    name = m->name;
+    return solveSpectralModel(*m, path);
+  }
+  if (const auto* m = std::get_if<CrossSectionModel>(&any)) {
+    name = m->name;
+    return solveSpectralModel(*m, path);
+  }
+  return std::nullopt;
+}
+
 int runSample(const std::string& modelPath, std::uint32_t grid, const SolveArgs& args) {
-  const VertexFrameModel model = loadVertexFrameModel(modelPath);
+  AnyModel any = loadModel(modelPath);
+  std::string name;
+  if (auto solved = solveIfSpectral(any, modelPath, name)) {
+    std::cout << cli::sampleJson(*solved, grid);
+    return 0;
+  }
+  const VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
   const VertexFrameSurface surface = solve(model, args.options(model));
   printNotes(surface, modelPath);
   // nlohmann writes doubles in their shortest round-trip form.
@@ -148,7 +206,13 @@ int runSample(const std::string& modelPath, std::uint32_t grid, const SolveArgs&
 }
 
 int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
-  const VertexFrameModel model = loadVertexFrameModel(modelPath);
+  AnyModel any = loadModel(modelPath);
+  std::string name;
+  if (auto solved = solveIfSpectral(any, modelPath, name)) {
+    std::cout << cli::infoText(*solved, modelPath, name, json);
+    return 0;
+  }
+  const VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
   const VertexFrameSurface surface = solve(model, args.options(model));
   printNotes(surface, modelPath);
   const C0Report c0 = measureC0Gap(surface);
@@ -215,13 +279,14 @@ Mesh readTriangles(const std::string& path) {
 struct SliceCommand {
   std::string meshPath, outPath, axis;
   std::uint32_t count = 0;
-  std::vector<double> range;
+  std::vector<double> range, near;
+  bool track = false;
 
   CLI::App* add(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "slice",
         "Cut a mesh (OFF, OBJ, PLY, STL) by planes perpendicular to an axis; print each "
-        "plane's largest closed loop as JSON");
+        "plane's largest closed loop (or the one --near / --track pick) as JSON");
     cmd->add_option("mesh", meshPath, "mesh file: .off .obj .ply .stl")->required();
     cmd->add_option("--axis", axis, "axis the planes are perpendicular to: x, y or z")
         ->required()
@@ -233,6 +298,15 @@ struct SliceCommand {
                     "planes from a to b, both ends included (default: the mesh's extent cut "
                     "into K slabs, a plane in the middle of each)")
         ->expected(2);
+    cmd->add_option("--near", near,
+                    "keep on each plane the closed loop whose centroid is nearest to the point "
+                    "X Y Z projected onto the plane (one part of a mesh that a plane cuts in "
+                    "several loops, such as one leg)")
+        ->expected(3);
+    cmd->add_flag("--track", track,
+                  "keep on each plane the loop nearest to the previous plane's loop (the first "
+                  "plane: nearest to --near if given, else the largest), following a part "
+                  "that moves across the planes");
     cmd->add_option("-o,--output", outPath, "write the JSON to this file (whole or not at all)");
     return cmd;
   }
@@ -249,6 +323,13 @@ struct SliceCommand {
         throw UsageError(fmt::format("--range: {}", e.what()));
       }
     }
+    if (!near.empty()) {
+      options.near = Vec3(near[0], near[1], near[2]);
+      if (!options.near->allFinite())
+        throw UsageError(
+            fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
+    }
+    options.track = track;
     const Mesh mesh = readTriangles(meshPath);
     std::vector<MeshSection> sections;
     try {
@@ -347,9 +428,9 @@ struct CompareCommand {
     fmt::print(
         "{}: {} at resolution {}; {}: {}, bounding-box diagonal {:.6g} "
         "(solve {:.3f} ms, tessellate {:.3f} ms, read {:.1f} ms, distance {:.1f} ms)\n",
-        modelName(built.model, modelPath), count(built.mesh.triangleCount(), "triangle"),
-        resolution, meshPath, count(mesh.triangleCount(), "triangle"), d.diagonal, built.solveMs,
-        built.tessMs, readMs, distanceMs);
+        built.name, count(built.mesh.triangleCount(), "triangle"), resolution, meshPath,
+        count(mesh.triangleCount(), "triangle"), d.diagonal, built.solveMs, built.tessMs, readMs,
+        distanceMs);
     for (const auto& [label, w] : {std::pair{"model -> mesh", &d.aToB}, {"mesh -> model", &d.bToA}})
       fmt::print("{}  RMS {:.6g} ({})  mean {:.6g} ({})  max {:.6g} ({})\n", label, w->rms,
                  percent(w->rmsRelative), w->mean, percent(w->meanRelative), w->max,
@@ -413,6 +494,29 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   studio->add_option("--host", studioOptions.host, "address to listen on")->capture_default_str();
 
+  std::vector<std::uint32_t> fitTerms;
+  bool fitUniform = false;
+  CLI::App* fit = app.add_subcommand(
+      "fit",
+      "Fit each closed curve of a curves file (a cross-sections model or {\"curves\": [...]}) "
+      "by a Fourier series; print the largest and mean distance of the points per number of "
+      "terms");
+  fit->add_option("curves", modelPath, "curves file (JSON)")->required();
+  fit->add_option("--terms", fitTerms, "numbers of Fourier terms N (one or more)")
+      ->required()
+      ->check(CLI::Range(0u, 512u));
+  fit->add_flag("--uniform", fitUniform,
+                "give points uniform v (default: chord length, as the seeds)");
+  fit->add_flag("--json", json, "print JSON");
+
+  std::uint32_t spineCount = 33;
+  CLI::App* spine = app.add_subcommand(
+      "spine", "Print the spine A0(u) of a spectral or cross-sections model as JSON polylines");
+  spine->add_option("model", modelPath, "model file (JSON)")->required();
+  spine->add_option("--count", spineCount, "points per patch")
+      ->check(CLI::Range(2u, 100000u))
+      ->capture_default_str();
+
   SliceCommand sliceCommand;
   CLI::App* slice = sliceCommand.add(app);
   CompareCommand compareCommand;
@@ -436,6 +540,22 @@ int main(int argc, char** argv) {
     if (*sample) return runSample(modelPath, grid, solveArgs);
     if (*studio) return pdesurf::studio::runStudio(modelPath, studioOptions);
     if (*slice) return sliceCommand.run();
+    if (*fit) {
+      std::cout << cli::fitReport(modelPath, fitTerms, !fitUniform, json);
+      return 0;
+    }
+    if (*spine) {
+      AnyModel any = loadModel(modelPath);
+      std::string name;
+      auto solved = solveIfSpectral(any, modelPath, name);
+      if (!solved)
+        throw UsageError(fmt::format(
+            "{}: a vertex-frames model has no spine (spine takes spectral and cross-sections "
+            "models)",
+            modelPath));
+      std::cout << cli::spineJson(*solved, spineCount);
+      return 0;
+    }
     if (*compare) return compareCommand.run();
     return runInfo(modelPath, json, solveArgs);
   } catch (const UsageError& e) {

@@ -22,6 +22,7 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <system_error>
@@ -35,6 +36,7 @@
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
+#include "pdesurf/spectral_io.hpp"
 // After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers.
 #include <httplib.h>
 
@@ -327,26 +329,43 @@ class StudioServer::Impl {
   // ------------------------------------------------------------------------------------
   // The session
 
-  std::uint64_t revision() const { return base_ + session_->revision(); }
+  std::uint64_t revision() const { return session_ ? base_ + session_->revision() : base_; }
 
   Json status() const {
     return {{"revision", revision()},
-            {"undo", session_->undoDepth()},
-            {"redo", session_->redoDepth()},
+            {"undo", session_ ? session_->undoDepth() : 0},
+            {"redo", session_ ? session_->redoDepth() : 0},
             {"dirty", revision() != savedRevision_}};
+  }
+
+  /// The routes that change a model need a vertex-frame session; spectral and
+  /// cross-section models are shown, exported and copied, not edited (yet).
+  void requireEditable() const {
+    if (!session_)
+      fail(409, fmt::format("{} models are view-only in the studio: edit the file, then open it "
+                            "again",
+                            view_->solved.type));
   }
 
   /// Replaces the session with `model`; the revision keeps increasing across sessions.
   void replaceSession(VertexFrameModel model) {
-    const std::uint64_t next = session_ ? revision() + 1 : 0;
+    const std::uint64_t next = opened_ ? revision() + 1 : 0;
     session_ = std::make_unique<ModelSession>(std::move(model));
+    view_.reset();
     base_ = next;
+    opened_ = true;
   }
 
   /// Loads a model file (throws ModelError, naming it as `source`) and starts a new session.
   void openModel(const fs::path& path, const std::string& source) {
     journal_.cancel();  // the journal read below must not change underneath
-    VertexFrameModel model = parseVertexFrameModel(readFile(path), source);
+    const std::string fileText = readFile(path);
+    AnyModel any = parseModel(fileText, source);
+    if (!std::holds_alternative<VertexFrameModel>(any)) {
+      openView(path, source, fileText, any);
+      return;
+    }
+    VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
     const std::string text = serializeVertexFrameModel(model);
     replaceSession(std::move(model));
     path_ = path;
@@ -365,16 +384,89 @@ class StudioServer::Impl {
     }
   }
 
+  /// A spectral or cross-section model: solved once, shown, not edited.
+  void openView(const fs::path& path, const std::string& source, const std::string& fileText,
+                const AnyModel& any) {
+    View view;
+    view.text = fileText;
+    view.json = Json::parse(fileText);
+    if (const auto* m = std::get_if<SpectralModel>(&any))
+      view.solved = solveSpectralModel(*m, source);
+    else
+      view.solved = solveSpectralModel(std::get<CrossSectionModel>(any), source);
+    const std::uint64_t next = opened_ ? revision() + 1 : 0;
+    session_.reset();
+    view_ = std::move(view);
+    base_ = next;
+    opened_ = true;
+    path_ = path;
+    savedRevision_ = revision();
+    recovery_ = false;
+  }
+
+  /// What the frame view draws for a view-only model: each patch's position curves and its
+  /// spine, as polylines (closed curves sampled at kViewCurveSamples v).
+  Json viewCurves() const {
+    constexpr std::uint32_t kViewCurveSamples = 96, kViewSpineSamples = 65;
+    Json curves = Json::array(), spines = Json::array();
+    const SolvedSpectral& s = view_->solved;
+    for (std::size_t k = 0; k < s.patchCount(); ++k) {
+      const SpectralPatch& p = s.patchAt(k);
+      const auto [u0, u1] = s.range(k);
+      for (const auto& c : p.conditions()) {
+        if (c.derivative != 0 || c.u < std::min(u0, u1) - 1e-12 || c.u > std::max(u0, u1) + 1e-12)
+          continue;
+        Json line = Json::array();
+        for (std::uint32_t j = 0; j < kViewCurveSamples; ++j) {
+          const Vec3 q = p.position(c.u, 2.0 * std::numbers::pi * j / kViewCurveSamples);
+          line.push_back({q.x(), q.y(), q.z()});
+        }
+        curves.push_back(std::move(line));
+      }
+      Json spine = Json::array();
+      for (std::uint32_t i = 0; i < kViewSpineSamples; ++i) {
+        const Vec3 q = p.spine(u0 + (u1 - u0) * i / (kViewSpineSamples - 1.0));
+        spine.push_back({q.x(), q.y(), q.z()});
+      }
+      spines.push_back(std::move(spine));
+    }
+    return {{"curves", std::move(curves)}, {"spines", std::move(spines)}};
+  }
+
+  /// The surface mesh of whatever model is open.
+  void meshOf(std::uint32_t resolution, const SolveOptions& options, Mesh& out, double& solveMs,
+              double& tessMs, double& gap) {
+    if (view_) {
+      auto t0 = Clock::now();
+      out = tessellate(view_->solved, resolution);
+      tessMs = msSince(t0);
+      solveMs = 0.0;  // solved when opened
+      gap = 0.0;
+      if (view_->solved.chain)
+        for (const JointGap& g : measureJointGaps(*view_->solved.chain)) gap = std::max(gap, g.c0);
+      return;
+    }
+    auto t0 = Clock::now();
+    const VertexFrameSurface& surface = session_->surface(options);
+    solveMs = msSince(t0);
+    t0 = Clock::now();
+    tessellate(surface, {resolution}, out);
+    tessMs = msSince(t0);
+    gap = measureC0Gap(surface).maxGap;
+  }
+
   /// The journal: the current model beside its file after every change. A pending
   /// recovery is never overwritten (recover or discard it first).
   void autosave() {
-    if (recovery_) return;
+    if (recovery_ || !session_) return;
     journal_.write(autosavePath(path_), session_->model());
   }
 
   void saveTo(const fs::path& path) {
     try {
-      writeFileAtomically(path, serializeVertexFrameModel(session_->model()));
+      // A view-only model is saved as its file was (save as: a copy).
+      writeFileAtomically(path,
+                          session_ ? serializeVertexFrameModel(session_->model()) : view_->text);
     } catch (const std::exception& e) {
       fail(500, e.what());
     }
@@ -396,7 +488,7 @@ class StudioServer::Impl {
       else if (s != "global")
         fail(400, fmt::format("solver: expected \"global\" or \"local\", found \"{}\"", s));
     }
-    if (req.has_param("seed")) {
+    if (req.has_param("seed") && session_) {
       const auto frames = static_cast<std::uint32_t>(session_->model().frames.size());
       o.seedFrame = parseUint(req.get_param_value("seed"), 0, frames - 1, "seed");
     }
@@ -477,11 +569,18 @@ class StudioServer::Impl {
                   Json out = status();
                   out["path"] = relative(path_);
                   out["recovery"] = recovery_;
-                  out["model"] = Json::parse(serializeVertexFrameModel(session_->model()));
+                  out["editable"] = session_ != nullptr;
+                  if (session_) {
+                    out["model"] = Json::parse(serializeVertexFrameModel(session_->model()));
+                  } else {
+                    out["model"] = view_->json;
+                    out["view"] = viewCurves();
+                  }
                   sendJson(res, out);
                 }));
 
     server_.Post("/api/edit", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   requireEditable();
                    const GroupedEdit edit = parseEdit(req.body, session_->model());
                    session_->apply(edit.edit, edit.group);
                    autosave();
@@ -489,17 +588,20 @@ class StudioServer::Impl {
                  }));
 
     server_.Post("/api/end-group", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   requireEditable();
                    session_->endGroup();
                    sendJson(res, status());
                  }));
 
     server_.Post("/api/undo", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   requireEditable();
                    if (!session_->undo()) fail(409, "nothing to undo");
                    autosave();
                    sendJson(res, status());
                  }));
 
     server_.Post("/api/redo", guarded([this](const httplib::Request&, httplib::Response& res) {
+                   requireEditable();
                    if (!session_->redo()) fail(409, "nothing to redo");
                    autosave();
                    sendJson(res, status());
@@ -518,13 +620,8 @@ class StudioServer::Impl {
                     base = parseUint(req.get_param_value("base"), 1,
                                      std::numeric_limits<std::uint32_t>::max(), "base");
                   const SolveOptions options = solveOptions(req);
-                  auto t0 = Clock::now();
-                  const VertexFrameSurface& surface = session_->surface(options);
-                  const double solveMs = msSince(t0);
-                  t0 = Clock::now();
-                  tessellate(surface, {resolution}, scratch_);
-                  const double tessMs = msSince(t0);
-                  const C0Report c0 = measureC0Gap(surface);
+                  double solveMs = 0, tessMs = 0, gap = 0;
+                  meshOf(resolution, options, scratch_, solveMs, tessMs, gap);
                   const bool delta = base != 0 && base == sentId_ && sameTopology(sent_, scratch_);
                   if (delta)
                     sendMeshDelta(res, sent_, scratch_, revision(), resolution);
@@ -536,7 +633,7 @@ class StudioServer::Impl {
                   res.set_header("X-Mesh-Id", std::to_string(sentId_));
                   res.set_header("X-Solve-Ms", fmt::format("{:.3f}", solveMs));
                   res.set_header("X-Tessellate-Ms", fmt::format("{:.3f}", tessMs));
-                  res.set_header("X-C0-Gap", fmt::format("{}", c0.maxGap));
+                  res.set_header("X-C0-Gap", fmt::format("{}", gap));
                 }));
 
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
@@ -612,7 +709,9 @@ class StudioServer::Impl {
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
                    makeParent(path);
-                   const Mesh mesh = tessellate(session_->surface(), {resolution});
+                   Mesh mesh;
+                   double solveMs = 0, tessMs = 0, gap = 0;
+                   meshOf(resolution, {}, mesh, solveMs, tessMs, gap);
                    try {
                      writeMesh(mesh, path.string());
                    } catch (const MeshIoError& e) {
@@ -744,6 +843,13 @@ class StudioServer::Impl {
   // The last mesh sent (GET /api/mesh) and its id; ids are never reused while the server
   // runs, so a client's `base` names exactly one mesh, across opened models too.
   Mesh sent_, scratch_;
+  struct View {
+    std::string text;  ///< the file as read
+    Json json;
+    SolvedSpectral solved;
+  };
+  std::optional<View> view_;  ///< set when a view-only model is open (session_ is null)
+  bool opened_ = false;
   Journal journal_;
   std::uint64_t sentId_ = 0;
   std::uint64_t meshCounter_ = 0;

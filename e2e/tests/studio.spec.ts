@@ -249,3 +249,22 @@ test('recovery: an autosave that differs from the file is offered', async ({ pag
   await expect(page.getByTestId('recovery')).toBeHidden();
   await expect.poll(async () => (await studio.state()).model.vertices[4][2]).toBe(0.5);
 });
+
+test.describe('a spectral model', () => {
+  test.use({ example: 'shell.json' });
+  test('is shown, exported and refused as an edit', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    await expect(page.getByTestId('status')).toContainText('spectral model: view only');
+    await expect(page.getByTestId('status')).toContainText('triangles');
+    expect((await studio.state()).editable).toBe(false);
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: shot('shell.png') });
+    const error = await page.evaluate(() =>
+      (window as any).__studio.edit({ op: 'move-vertex', vertex: 0, position: [0, 0, 0] }),
+    );
+    expect(error).toContain('view-only');
+    await page.getByTestId('export-obj').click();
+    await expect(page.getByTestId('status')).toContainText('exported shell.obj');
+    expect(existsSync(path.join(studio.root, 'shell.obj'))).toBe(true);
+  });
+});

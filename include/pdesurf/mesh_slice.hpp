@@ -42,9 +42,18 @@ struct SliceOptions {
   /// mesh's extent [lo, hi] along the axis cut into K equal slabs, plane i in the middle of
   /// slab i, at lo + (i + ½)(hi - lo) / K, so that every plane cuts the mesh.
   std::optional<std::pair<double, double>> range;
+  /// Which closed loop each plane keeps. Default (neither set): the largest by enclosed
+  /// area. With `near`: the loop whose area centroid is nearest to `near` projected onto the
+  /// plane (distances measured in the plane). With `track`: plane 0 keeps the loop chosen by
+  /// the rule above (nearest to `near` if given, else the largest) and every later plane the
+  /// loop whose centroid is nearest to the previous plane's kept centroid projected onto it,
+  /// so that a curving part (an elephant's trunk) is followed plane by plane. A plane through
+  /// several parts (four legs) thus gives the same part on every plane.
+  std::optional<Vec3> near;
+  bool track = false;
 };
 
-/// One plane's largest closed loop.
+/// One plane's kept closed loop (the largest, or the one SliceOptions::near / track pick).
 struct MeshSection {
   std::uint32_t index = 0;  ///< plane index, 0 … K-1
   double coordinate = 0.0;  ///< the plane: {p : p[axis] = coordinate}
@@ -55,6 +64,10 @@ struct MeshSection {
   std::vector<Vec3> points;
   double length = 0.0;  ///< perimeter, closing segment included
   double area = 0.0;    ///< enclosed area in the plane (shoelace formula), > 0
+  /// Area centroid of the loop (in the plane). Not part of the CLI's JSON.
+  Vec3 centroid = Vec3::Zero();
+  /// Number of closed (non-degenerate) loops the plane cut, the kept one included.
+  std::uint32_t loops = 0;
 };
 
 /// The planes' coordinates for `options` on a mesh whose extent along the axis is [lo, hi]
@@ -62,8 +75,8 @@ struct MeshSection {
 /// of 0 or a range that is not finite or has a > b (a == b with more than one plane).
 std::vector<double> slicePlanes(const SliceOptions& options, double lo, double hi);
 
-/// Cuts `mesh` by the planes of `options` and returns, for each plane, its largest closed
-/// loop by enclosed area.
+/// Cuts `mesh` by the planes of `options` and returns, for each plane, one closed loop: the
+/// largest by enclosed area, or the one picked by SliceOptions::near / track.
 ///
 /// The cut is exact in topology: a loop's points are the intersections of the plane with
 /// mesh edges, welded by edge (vertex indices), never by distance, so loops close exactly.
@@ -76,7 +89,8 @@ std::vector<double> slicePlanes(const SliceOptions& options, double lo, double h
 ///
 /// Throws MeshSliceError when a plane meets no triangle ("plane 3 at z=2.5 does not meet
 /// the mesh (extent z in [0, 2])") or has no closed loop (only open chains); and
-/// std::invalid_argument for bad options (see slicePlanes).
+/// std::invalid_argument for bad options (see slicePlanes; a `near` point that is not
+/// finite).
 std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options);
 
 }  // namespace pdesurf

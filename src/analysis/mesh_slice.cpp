@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 
@@ -160,6 +161,30 @@ double signedArea(const std::vector<Vec3>& points, std::pair<int, int> uw) {
   return 0.5 * twice;
 }
 
+/// Area centroid of a counter-clockwise closed polyline of (positive) `area` in the plane's
+/// (u, w) coordinates; the axis coordinate is the polyline's own.
+Vec3 areaCentroid(const std::vector<Vec3>& points, std::pair<int, int> uw, double area) {
+  const auto [u, w] = uw;
+  const Vec3& o = points.front();
+  double cu = 0.0, cw = 0.0;
+  for (std::size_t i = 1; i + 1 < points.size(); ++i) {
+    const double au = points[i][u] - o[u], aw = points[i][w] - o[w];
+    const double bu = points[i + 1][u] - o[u], bw = points[i + 1][w] - o[w];
+    const double cross = au * bw - bu * aw;  // twice the signed area of (o, a, b)
+    cu += cross * (au + bu);
+    cw += cross * (aw + bw);
+  }
+  Vec3 c = o;
+  c[u] += cu / (6.0 * area);
+  c[w] += cw / (6.0 * area);
+  return c;
+}
+
+/// Distance between two points projected onto the plane (the axis coordinate ignored).
+double inPlaneDistance(const Vec3& a, const Vec3& b, std::pair<int, int> uw) {
+  return std::hypot(a[uw.first] - b[uw.first], a[uw.second] - b[uw.second]);
+}
+
 std::string extentText(Axis axis, double lo, double hi) {
   return fmt::format("extent {} in [{}, {}]", axisName(axis), lo, hi);
 }
@@ -207,6 +232,10 @@ std::vector<double> slicePlanes(const SliceOptions& options, double lo, double h
 std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options) {
   const int k = axisIndex(options.axis);
   const char* name = axisName(options.axis);
+  if (options.near && !options.near->allFinite())
+    throw std::invalid_argument(fmt::format("slicing near ({}, {}, {}): the point is not finite",
+                                            options.near->x(), options.near->y(),
+                                            options.near->z()));
   if (mesh.triangleCount() == 0) throw MeshSliceError("cannot slice a mesh with no triangles");
   // The extent along the axis, over the vertices that triangles use.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -243,31 +272,50 @@ std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options
     if (cut.segments.empty()) fail("cuts no triangle of the mesh (it passes between its parts)");
     const Loops loops = traceLoops(cut);
 
-    MeshSection best;
-    best.area = -1.0;
+    // Every closed loop, counter-clockwise, with its area and centroid.
+    std::vector<MeshSection> candidates;
     std::size_t degenerate = 0;
     for (const auto& chain : loops.closed) {
-      std::vector<Vec3> points;
+      MeshSection loop;
+      std::vector<Vec3>& points = loop.points;
       points.reserve(chain.size());
       for (std::uint32_t node : chain)
         if (points.empty() || cut.nodes[node] != points.back()) points.push_back(cut.nodes[node]);
       while (points.size() > 1 && points.back() == points.front()) points.pop_back();
-      if (points.size() < 3) {
+      const double area = points.size() < 3 ? 0.0 : signedArea(points, uw);
+      if (area == 0.0) {
         ++degenerate;
         continue;
       }
-      const double area = signedArea(points, uw);
-      if (std::abs(area) <= best.area) continue;
       if (area < 0.0) std::reverse(points.begin(), points.end());
-      best.area = std::abs(area);
-      best.points = std::move(points);
+      loop.area = std::abs(area);
+      loop.centroid = areaCentroid(points, uw, loop.area);
+      candidates.push_back(std::move(loop));
     }
-    if (best.points.empty())
+    if (candidates.empty())
       fail(
           fmt::format("has no closed loop: the section is {} open chain{} and {} degenerate loop{} "
                       "(the mesh is open or only touches the plane there)",
                       loops.openChains, loops.openChains == 1 ? "" : "s", degenerate,
                       degenerate == 1 ? "" : "s"));
+    // The target the kept loop's centroid should be nearest to, if any.
+    std::optional<Vec3> target;
+    if (options.track && !sections.empty())
+      target = sections.back().centroid;
+    else if (options.near)
+      target = *options.near;
+    std::size_t pick = 0;
+    for (std::size_t j = 1; j < candidates.size(); ++j) {
+      if (target) {
+        if (inPlaneDistance(candidates[j].centroid, *target, uw) <
+            inPlaneDistance(candidates[pick].centroid, *target, uw))
+          pick = j;
+      } else if (candidates[j].area > candidates[pick].area) {
+        pick = j;
+      }
+    }
+    MeshSection best = std::move(candidates[pick]);
+    best.loops = static_cast<std::uint32_t>(candidates.size());
     best.index = i;
     best.coordinate = c;
     for (std::size_t p = 0; p < best.points.size(); ++p)

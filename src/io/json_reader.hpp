@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +17,16 @@
 namespace pdesurf::detail {
 
 using Json = nlohmann::json;
+
+/// The whole text of a model file (errors name the path).
+inline std::string readModelFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path, "", "cannot open the file for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ModelError(path, "", "read error");
+  return text.str();
+}
 
 inline const char* kComponents[3] = {"x", "y", "z"};
 

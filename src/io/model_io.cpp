@@ -95,12 +95,7 @@ VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string&
 }
 
 VertexFrameModel loadVertexFrameModel(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ModelError(path, "", "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ModelError(path, "", "read error");
-  return parseVertexFrameModel(text.str(), path);
+  return parseVertexFrameModel(detail::readModelFile(path), path);
 }
 
 std::string serializeVertexFrameModel(const VertexFrameModel& model) {

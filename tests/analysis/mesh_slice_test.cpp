@@ -156,6 +156,103 @@ TEST(MeshSlice, KeepsTheLargestLoop) {
   }
 }
 
+/// Two separate cylinders: the small one round the z axis (radius 1), the large one
+/// (radius 2) round x = 10. Every plane z in (0, 2) cuts both.
+Mesh twoCylinders() {
+  CylinderOptions small, large;
+  small.radius = 1.0;
+  large.radius = 2.0;
+  large.offset = {10, 0, 0};
+  return testing::merged(cylinderMesh(small), cylinderMesh(large));
+}
+
+/// Every point of the section within `radius` (plus float rounding) of (cx, cy).
+void expectAround(const MeshSection& s, double cx, double cy, double radius) {
+  for (const Vec3& p : s.points)
+    EXPECT_LE(std::hypot(p.x() - cx, p.y() - cy), radius + kFloatTolerance)
+        << "plane " << s.index << " point (" << p.x() << ", " << p.y() << ")";
+}
+
+TEST(MeshSlice, NearPicksTheLoopNearestThePointOnEveryPlane) {
+  const Mesh mesh = twoCylinders();
+  SliceOptions options;
+  options.count = 5;
+  // Default: the largest loop, the cylinder at x = 10.
+  for (const MeshSection& s : sliceMesh(mesh, options)) expectAround(s, 10, 0, 2);
+  // Near a point by the small cylinder: the small one on every plane. The point's z does
+  // not matter (it is projected onto each plane).
+  options.near = Vec3(0.3, -0.2, 57.0);
+  const std::vector<MeshSection> sections = sliceMesh(mesh, options);
+  ASSERT_EQ(sections.size(), 5u);
+  for (const MeshSection& s : sections) {
+    expectWellFormed(s, Axis::Z);
+    expectAround(s, 0, 0, 1);
+    EXPECT_EQ(s.loops, 2u);
+    // The area centroid of the regular polygon is its centre.
+    EXPECT_NEAR(s.centroid.x(), 0.0, kFloatTolerance);
+    EXPECT_NEAR(s.centroid.y(), 0.0, kFloatTolerance);
+    EXPECT_EQ(s.centroid.z(), s.coordinate);
+  }
+  // Nearer the large one (in the plane): the large one.
+  options.near = Vec3(6.0, 0.0, -3.0);
+  for (const MeshSection& s : sliceMesh(mesh, options)) expectAround(s, 10, 0, 2);
+}
+
+TEST(MeshSlice, TrackFollowsAPartThatMovesAcrossThePlanes) {
+  // A unit cylinder sheared so that its axis runs from (0, 0, 0) to (5, 0, 2), and a fixed
+  // cylinder of radius 0.5 round (3, 3). A fixed point near the sheared one's foot loses
+  // it on the upper planes (its centre moves away by 2.5 z, the fixed one is 4.24 away);
+  // tracking keeps it on every plane.
+  CylinderOptions slanted, post;
+  slanted.rings = 8;
+  post.radius = 0.5;
+  post.offset = {3, 3, 0};
+  Mesh moving = cylinderMesh(slanted);
+  for (std::size_t v = 0; v < moving.vertexCount(); ++v)
+    moving.positions[3 * v] += static_cast<float>(2.5 * moving.positions[3 * v + 2]);
+  const Mesh mesh = testing::merged(moving, cylinderMesh(post));
+  SliceOptions options;
+  options.count = 9;
+  options.range = {{0.05, 1.95}};
+  options.near = Vec3(0, 0, 0);
+  std::size_t jumped = 0;
+  for (const MeshSection& s : sliceMesh(mesh, options))
+    if (std::abs(s.centroid.x() - 3) < 1e-3 && std::abs(s.centroid.y() - 3) < 1e-3) ++jumped;
+  EXPECT_GT(jumped, 0u) << "a fixed point should lose the moving part on the upper planes";
+  options.track = true;
+  const std::vector<MeshSection> sections = sliceMesh(mesh, options);
+  ASSERT_EQ(sections.size(), 9u);
+  for (const MeshSection& s : sections) {
+    expectWellFormed(s, Axis::Z);
+    EXPECT_EQ(s.loops, 2u);
+    // A sheared circle: centred on the axis at x = 2.5 z, within 1 of it in y.
+    EXPECT_NEAR(s.centroid.x(), 2.5 * s.coordinate, 1e-3) << "plane " << s.index;
+    EXPECT_NEAR(s.centroid.y(), 0.0, 1e-3) << "plane " << s.index;
+  }
+  // Track without near starts from the largest loop (the moving one: area π against π/4).
+  options.near.reset();
+  for (const MeshSection& s : sliceMesh(mesh, options))
+    EXPECT_NEAR(s.centroid.x(), 2.5 * s.coordinate, 1e-3) << "plane " << s.index;
+}
+
+TEST(MeshSlice, NearOnAPlaneWithoutClosedLoopIsAnError) {
+  CylinderOptions slit;
+  slit.caps = false;
+  slit.slitSegments = 3;
+  SliceOptions options;
+  options.near = Vec3(0, 0, 0);
+  options.track = true;
+  try {
+    sliceMesh(cylinderMesh(slit), options);
+    FAIL() << "no error";
+  } catch (const MeshSliceError& e) {
+    EXPECT_NE(std::string(e.what()).find("plane 0 at z=0.1 has no closed loop"), std::string::npos)
+        << e.what();
+  }
+  options.near = Vec3(0, std::numeric_limits<double>::quiet_NaN(), 0);
+  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), std::invalid_argument);
+}
+
 TEST(MeshSlice, OrientationDoesNotDependOnTheMeshOrientation) {
   Mesh inward = cylinderMesh({});
   for (std::size_t t = 0; t < inward.triangleCount(); ++t)

@@ -166,6 +166,60 @@ TEST_F(CliSlice, OpenChainsOnlyFailsNamingThePlane) {
   EXPECT_EQ(entries(), std::vector<std::string>{"slit.ply"});
 }
 
+TEST_F(CliSlice, NearAndTrackPickOneOfTwoCylinders) {
+  // The small cylinder (radius 1) round the z axis, the large one (radius 2) round x = 10.
+  testing::CylinderOptions small, large;
+  large.radius = 2.0;
+  large.offset = {10, 0, 0};
+  writeMesh(testing::merged(testing::cylinderMesh(small), testing::cylinderMesh(large)),
+            path("two.off"));
+  // Every point of every plane within `radius` of (cx, 0).
+  auto around = [](const Json& doc, double cx, double radius) {
+    EXPECT_EQ(doc["planes"].size(), 4u);
+    for (const Json& plane : doc["planes"])
+      for (const Json& p : plane["points"])
+        EXPECT_LE(std::hypot(p[0].get<double>() - cx, p[1].get<double>()),
+                  radius + kFloatTolerance);
+  };
+  const CliRun largest = run("slice two.off --axis z --count 4");
+  ASSERT_EQ(largest.code, 0) << largest.err;
+  around(Json::parse(largest.out), 10, 2);
+  const CliRun near = run("slice two.off --axis z --count 4 --near 0.5 0 -9");
+  ASSERT_EQ(near.code, 0) << near.err;
+  around(Json::parse(near.out), 0, 1);
+  const CliRun tracked = run("slice two.off --axis z --count 4 --near 0 0 0 --track -o s.json");
+  ASSERT_EQ(tracked.code, 0) << tracked.err;
+  EXPECT_EQ(testing::readText(path("s.json")), near.out);
+  const CliRun trackLargest = run("slice two.off --axis z --count 4 --track");
+  ASSERT_EQ(trackLargest.code, 0) << trackLargest.err;
+  EXPECT_EQ(trackLargest.out, largest.out);
+  // The help names both options.
+  const CliRun help = run("slice --help");
+  EXPECT_TRUE(contains(help.out, "--near")) << help.out;
+  EXPECT_TRUE(contains(help.out, "--track")) << help.out;
+}
+
+TEST_F(CliSlice, BadNearIsAUsageError) {
+  writeMesh(testing::cylinderMesh({}), path("cyl.off"));
+  for (const char* args : {"--near 1 2", "--near 1 2 x", "--near nan 0 0"}) {
+    const CliRun r = run(std::string("slice cyl.off --axis z --count 2 ") + args + " -o out.json");
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, "--near")) << args << "\n" << r.err;
+  }
+  EXPECT_EQ(entries(), std::vector<std::string>{"cyl.off"});
+}
+
+TEST_F(CliSlice, NearWithoutClosedLoopFailsNamingThePlane) {
+  testing::CylinderOptions slit;
+  slit.caps = false;
+  slit.slitSegments = 2;
+  writeMesh(testing::cylinderMesh(slit), path("slit.ply"));
+  const CliRun r = run("slice slit.ply --axis z --count 2 --near 0 0 0 --track -o out.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(contains(r.err, "slit.ply: plane 0 at z=0.5 has no closed loop")) << r.err;
+  EXPECT_EQ(entries(), std::vector<std::string>{"slit.ply"});
+}
+
 // ---------------------------------------------------------------------------------------
 // compare
 

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -480,6 +481,49 @@ TEST_F(StudioServerTest, AutosaveRecoversAfterACrash) {
   EXPECT_EQ(model()["recovery"], false);
   crashAndRestart();
   EXPECT_EQ(model()["recovery"], false);
+}
+
+TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedButNotEdited) {
+  const std::string tube = R"({"type": "spectral", "name": "tube", "operator": "ugail", "N": 1,
+    "modes": 2, "conditions": [
+      {"u": 0, "curve": {"fourier": {"a0": [0, 0, 0], "a": [[1, 0, 0]], "b": [[0, 1, 0]]}}},
+      {"u": 1, "curve": {"fourier": {"a0": [0, 0, 1], "a": [[0.5, 0, 0]], "b": [[0, 0.5, 0]]}}}]})";
+  writeText(root_ / "tube.json", tube);
+  const auto opened = post("/api/open", R"({"path": "tube.json"})");
+  ASSERT_EQ(opened->status, 200) << opened->body;
+  const Json m = model();
+  EXPECT_EQ(m["editable"], false);
+  EXPECT_EQ(m["model"]["type"], "spectral");
+  EXPECT_EQ(m["view"]["curves"].size(), 2u);  // the two position curves
+  EXPECT_EQ(m["view"]["spines"].size(), 1u);
+  // The first curve is the unit circle at z = 0.
+  for (const Json& p : m["view"]["curves"][0])
+    EXPECT_NEAR(std::hypot(p[0].get<double>(), p[1].get<double>()), 1.0, 1e-12);
+
+  const MeshData mesh = this->mesh("?resolution=5");
+  EXPECT_EQ(mesh.vertexCount, 5u * 16u);  // 5 rows, 4(5 − 1) columns, the seam shared
+  EXPECT_EQ(mesh.revision, m["revision"].get<std::uint32_t>());
+
+  for (const char* route : {"/api/edit", "/api/undo", "/api/redo", "/api/end-group"}) {
+    const auto [status, message] = failure(post(route, move(0, 0, 0, 0)));
+    EXPECT_EQ(status, 409) << route;
+    EXPECT_NE(message.find("spectral models are view-only"), std::string::npos) << message;
+  }
+  const auto exported = post("/api/export", R"({"path": "tube.obj", "resolution": 5})");
+  ASSERT_EQ(exported->status, 200) << exported->body;
+  EXPECT_EQ(readMesh((root_ / "tube.obj").string()).vertexCount(), mesh.vertexCount);
+  const auto copied = post("/api/save-as", R"({"path": "copies/tube2.json"})");
+  ASSERT_EQ(copied->status, 200) << copied->body;
+  EXPECT_EQ(readText(root_ / "copies/tube2.json"), tube);
+  server_->flushJournal();
+  EXPECT_FALSE(fs::exists(root_ / "tube.json.autosave"));
+
+  // Back to a vertex-frame model: editable again, revisions still increasing.
+  ASSERT_EQ(post("/api/open", R"({"path": "grid.json"})")->status, 200);
+  const Json g = model();
+  EXPECT_EQ(g["editable"], true);
+  EXPECT_GT(g["revision"].get<int>(), m["revision"].get<int>());
+  EXPECT_EQ(post("/api/edit", move(0, 0, 0, 0.2))->status, 200);
 }
 
 TEST_F(StudioServerTest, ExportWritesAReadableMesh) {

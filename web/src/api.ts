@@ -34,10 +34,22 @@ export interface Status {
   redo: number;
   dirty: boolean;
 }
+/** What the frame view draws of a view-only (spectral, cross-sections) model. */
+export interface ModelView {
+  /** Position curves of the conditions, closed, sampled around v. */
+  curves: Vec3[][];
+  /** The spine A0(u) of each patch. */
+  spines: Vec3[][];
+}
+
 export interface ModelState extends Status {
   path: string;
   recovery: boolean;
+  /** False for models the studio shows but does not edit (spectral, cross-sections). */
+  editable: boolean;
+  /** The model as its file says (a vertex-frames Model when editable). */
   model: Model;
+  view?: ModelView;
 }
 export interface FileStatus extends Status {
   path: string;

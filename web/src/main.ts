@@ -4,7 +4,7 @@
 import './style.css';
 import { api, applyDelta, ApiError } from './api';
 import type { Edit, FrameForce, MeshData, Model, ModelState, Region, SharedForce, Status, Vec3 } from './api';
-import { FrameView, SurfaceView, modelBox } from './scene';
+import { FrameView, SurfaceView, modelBox, pointsBox } from './scene';
 
 const $ = <T extends HTMLElement = HTMLElement>(id: string): T => {
   const el = document.querySelector<T>(`[data-testid="${id}"]`);
@@ -25,6 +25,8 @@ interface State {
   selectedForce: number;
   mesh: MeshData | null;
   meshStale: boolean;
+  /** The type of a view-only model (spectral, cross-sections), or '' for an editable one. */
+  viewOnly: string;
   error: string;
   message: string;
 }
@@ -38,6 +40,7 @@ const state: State = {
   selectedForce: 0,
   mesh: null,
   meshStale: false,
+  viewOnly: '',
   error: '',
   message: '',
 };
@@ -66,6 +69,7 @@ function renderStatus(): void {
     parts.push(`solve ${state.mesh.solveMs.toFixed(2)} ms`, `tessellate ${state.mesh.tessellateMs.toFixed(2)} ms`);
     parts.push(`${plural(state.mesh.triangleCount, 'triangle')}`);
   }
+  if (state.viewOnly) parts.push(`${state.viewOnly} model: view only (edit its file)`);
   if (state.meshStale) parts.push('surface out of date (Create)');
   if (state.message) parts.push(state.message);
   $('status').textContent = parts.join(' · ');
@@ -217,6 +221,12 @@ const pump = new EditPump();
 // Model and selection
 
 function applyState(s: ModelState, fit: boolean): void {
+  if (!s.editable) {
+    applyViewOnly(s, fit);
+    return;
+  }
+  state.viewOnly = '';
+  surfaceView.setOverlay($<HTMLInputElement>('overlay').checked);
   const changedTopology =
     !state.model ||
     state.model.vertices.length !== s.model.vertices.length ||
@@ -238,6 +248,29 @@ function applyState(s: ModelState, fit: boolean): void {
   if (fit) {
     frameView.fit(modelBox(s.model));
     surfaceView.fit(modelBox(s.model));
+  }
+}
+
+/** A model the studio shows but does not edit: its curves on the left, the panel idle. */
+function applyViewOnly(s: ModelState, fit: boolean): void {
+  state.model = null;
+  state.viewOnly = (s.model as { type?: string }).type ?? 'this';
+  state.path = s.path;
+  state.status = s;
+  state.selectedVertex = null;
+  state.selectedFrames.clear();
+  $('recovery').hidden = true;
+  const exportName = $<HTMLInputElement>('export-name');
+  if (fit || !exportName.value) exportName.value = s.path.replace(/\.json$/, '');
+  const view = s.view ?? { curves: [], spines: [] };
+  frameView.showCurves(view.curves, view.spines);
+  surfaceView.setOverlay(false);
+  renderPanel();
+  renderStatus();
+  if (fit) {
+    const box = pointsBox([...view.curves, ...view.spines]);
+    frameView.fit(box);
+    surfaceView.fit(box);
   }
 }
 
@@ -751,7 +784,7 @@ $<HTMLInputElement>('zebra').addEventListener('change', (ev) =>
   surfaceView.setZebra((ev.target as HTMLInputElement).checked),
 );
 $<HTMLInputElement>('overlay').addEventListener('change', (ev) =>
-  surfaceView.setOverlay((ev.target as HTMLInputElement).checked),
+  surfaceView.setOverlay((ev.target as HTMLInputElement).checked && !state.viewOnly),
 );
 
 // ----------------------------------------------------------------------------------------

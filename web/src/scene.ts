@@ -27,7 +27,7 @@ const ANTIALIAS = (() => {
   return aa === null ? !softwareWebGL() : aa !== '0';
 })();
 
-/** A canvas with its renderer, scene, camera and orbit controls, rendered every frame. */
+/** A canvas with its renderer, scene, camera and orbit controls, rendered when it changes. */
 export class Viewport {
   readonly renderer: THREE.WebGLRenderer;
   readonly scene = new THREE.Scene();
@@ -156,8 +156,12 @@ export class Viewport {
 }
 
 export function modelBox(model: Model): THREE.Box3 {
+  return pointsBox([model.vertices]);
+}
+
+export function pointsBox(lines: Vec3[][]): THREE.Box3 {
   const box = new THREE.Box3();
-  for (const v of model.vertices) box.expandByPoint(new THREE.Vector3(...v));
+  for (const line of lines) for (const v of line) box.expandByPoint(new THREE.Vector3(...v));
   return box;
 }
 
@@ -319,12 +323,22 @@ export class FrameView extends Viewport {
   readonly lines = new FrameLines();
   private readonly handles: Handles;
   private model: Model | null = null;
+  /** A view-only model's curves and spines (hidden while a vertex-frame model is shown). */
+  private readonly curves = new THREE.LineSegments(
+    new THREE.BufferGeometry(),
+    new THREE.LineBasicMaterial({ color: FRAME_COLOR }),
+  );
+  private readonly spines = new THREE.LineSegments(
+    new THREE.BufferGeometry(),
+    new THREE.LineBasicMaterial({ color: FRAME_SELECTED }),
+  );
 
   constructor(container: HTMLElement) {
     super(container);
     this.handles = new Handles(this.renderer.getPixelRatio());
     this.scene.add(this.lines.object);
     this.scene.add(this.handles.object);
+    this.scene.add(this.curves, this.spines);
     const grid = new THREE.GridHelper(1, 10, 0xc9ced6, 0xdfe3e8);
     grid.rotation.x = Math.PI / 2;
     grid.name = 'grid';
@@ -334,19 +348,44 @@ export class FrameView extends Viewport {
   setModel(model: Model, selectedVertex: number | null, selectedFrames: ReadonlySet<number>): void {
     const resized = !this.model || this.model.vertices.length !== model.vertices.length;
     this.model = model;
-    if (resized) {
-      const box = modelBox(model);
-      const grid = this.scene.getObjectByName('grid');
-      if (grid) {
-        const size = box.getSize(new THREE.Vector3());
-        const s = Math.max(size.x, size.y, 1e-3) * 1.6;
-        grid.scale.setScalar(s);
-        grid.position.set(...box.getCenter(new THREE.Vector3()).toArray().slice(0, 2) as [number, number], box.min.z);
-      }
-    }
+    this.showEditable(true);
+    if (resized) this.placeGrid(modelBox(model));
     this.handles.update(model, selectedVertex);
     this.lines.update(model, selectedFrames);
     this.invalidate();
+  }
+
+  /** A view-only model: its closed curves and open spines as polylines, nothing to pick. */
+  showCurves(curves: Vec3[][], spines: Vec3[][]): void {
+    this.model = null;
+    this.showEditable(false);
+    const segments = (lines: Vec3[][], closed: boolean) => {
+      const out: number[] = [];
+      for (const line of lines)
+        for (let i = 0; i + (closed ? 0 : 1) < line.length; ++i)
+          out.push(...line[i], ...line[(i + 1) % line.length]);
+      return new THREE.Float32BufferAttribute(out, 3);
+    };
+    this.curves.geometry.setAttribute('position', segments(curves, true));
+    this.spines.geometry.setAttribute('position', segments(spines, false));
+    this.curves.geometry.computeBoundingSphere();
+    this.spines.geometry.computeBoundingSphere();
+    this.placeGrid(pointsBox([...curves, ...spines]));
+    this.invalidate();
+  }
+
+  private showEditable(on: boolean): void {
+    this.handles.object.visible = this.lines.object.visible = on;
+    this.curves.visible = this.spines.visible = !on;
+  }
+
+  /** The ground grid under a box. */
+  private placeGrid(box: THREE.Box3): void {
+    const grid = this.scene.getObjectByName('grid');
+    if (!grid || box.isEmpty()) return;
+    const size = box.getSize(new THREE.Vector3());
+    grid.scale.setScalar(Math.max(size.x, size.y, 1e-3) * 1.6);
+    grid.position.set(...box.getCenter(new THREE.Vector3()).toArray().slice(0, 2) as [number, number], box.min.z);
   }
 
   /** Moves one vertex of the model shown (a drag): its handle and its line ends. */

@@ -1,0 +1,80 @@
+// Per-mode solution bases of separable periodic operators (math-notes §2): for each
+// characteristic root μ of multiplicity m, the functions p_k(x) e^{μ(t-c)} (k < m) on the
+// local parameter t ∈ [0, 1], where c = 1 and x = 1 - t for Re μ > 0 (growing exponentials
+// written as e^{μ(t-1)}, bounded on [0, 1]), c = 0 and x = t otherwise, and the p_k are
+// orthonormal for the weight |e^{μ(t-c)}|² = e^{-2|Re μ| x} on [0, 1] (so each group of
+// basis functions is L2-orthonormal; for Re μ = 0, e.g. mode 0, they are the Legendre
+// polynomials). A complex pair α ± iβ gives the real and imaginary parts.
+#pragma once
+
+#include <complex>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pdesurf/spectral.hpp"
+
+namespace pdesurf::spectral {
+
+/// The engine computes bases, solves and mode sums in extended precision: where the
+/// growing and decaying exponentials of a mode overlap (|root| < ~3 × multiplicity) the
+/// basis is ill-conditioned (docs/spectral.md), and the 3 extra digits of x87 long double
+/// keep conditions to ~1e-11 there.
+using Real = long double;
+using MatrixR = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+using RowVectorR = Eigen::Matrix<Real, 1, Eigen::Dynamic>;
+/// Double-precision mode systems live on the stack (orders up to kSmallOrder): no Eigen heap
+/// storage of double, whose out-of-line helpers a program may also instantiate with another
+/// alignment (the library is built with -march=native, its users need not be), and no
+/// allocation per solve.
+constexpr int kSmallOrder = 40;
+using SmallMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kSmallOrder, kSmallOrder>;
+
+/// A mode's coefficients (order × 3) as a matrix.
+inline Eigen::Map<const Eigen::Matrix<Real, Eigen::Dynamic, 3, Eigen::RowMajor>> coefficients(
+    const std::vector<Real>& c) {
+  return {c.data(), static_cast<Eigen::Index>(c.size() / 3), 3};
+}
+
+/// One characteristic root (Im μ ≥ 0; a complex one stands for its conjugate too).
+struct Root {
+  std::complex<double> mu;
+  std::uint32_t multiplicity = 1;
+};
+
+/// The roots of mode n of `op` in the local parameter t = (u - u0) / length.
+std::vector<Root> modeRoots(const SpectralOperator& op, std::uint32_t n, double length);
+
+/// Orthonormal polynomials for e^{-2σx} on [0, 1] by their three-term recurrence
+/// b_{k+1} p_{k+1} = (x - α_k) p_k - b_k p_{k-1}, p_0 = 1 / b_0 (discretised Stieltjes).
+struct Recurrence {
+  std::vector<Real> alpha, b;  ///< b[0] = sqrt(∫ w)
+};
+Recurrence weightedRecurrence(double sigma, std::uint32_t count);
+
+class ModeBasis {
+ public:
+  ModeBasis() = default;
+  explicit ModeBasis(std::vector<Root> roots);
+
+  std::uint32_t size() const { return size_; }
+  /// Whether this mode needs extended precision: a growing and a decaying group of
+  /// multiplicity m ≥ 2 overlap (|root| < 3m), and their near-dependence costs more than
+  /// ~6 digits (m ≥ 8 or |root| < m; measured in docs/spectral.md).
+  bool extended() const { return extended_ || size_ > kSmallOrder; }
+  /// out(j, k) = d^j φ_k / dt^j at t, for j = 0..maxDerivative (MatrixR or SmallMatrix).
+  template <class M>
+  void evaluate(double t, std::uint32_t maxDerivative, M& out) const;
+  /// Row of the k-th derivative only.
+  RowVectorR row(double t, std::uint32_t derivative) const;
+
+ private:
+  std::vector<Root> roots_;
+  std::vector<Recurrence> recurrences_;  ///< per root
+  std::uint32_t size_ = 0;
+  bool extended_ = false;
+};
+
+}  // namespace pdesurf::spectral

@@ -1,0 +1,83 @@
+// Private pieces of the spectral engine shared by its source files.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pdesurf/spectral.hpp"
+#include "spectral/basis.hpp"
+
+namespace pdesurf::spectral {
+
+/// A periodic (period 2π) interpolating cubic spline through (v_j, y_j), C2.
+class PeriodicSpline {
+ public:
+  PeriodicSpline(std::vector<double> v, std::vector<Vec3> y);
+  /// k-th derivative (k ≤ 3; zero above).
+  Vec3 evaluate(double v, std::uint32_t k = 0) const;
+
+ private:
+  std::vector<double> v_;
+  std::vector<Vec3> y_, m_;  // values, second derivatives
+};
+
+/// A natural cubic spline (linear beyond the end knots), for spine edits.
+Vec3 evaluateNaturalSpline(const SpineOffset& s, double u, std::uint32_t k);
+SpineOffset naturalSpline(std::vector<double> u, std::vector<Vec3> y);
+
+/// One term of a condition's tail: weight × (a spline, or the modes > M of a Fourier curve).
+struct TailTerm {
+  double weight = 1.0;
+  std::shared_ptr<const PeriodicSpline> spline;
+  std::shared_ptr<const FourierCurve> fourier;  ///< modes ≤ M zeroed
+  Vec3 evaluate(double v, std::uint32_t k) const {
+    return weight * (spline ? spline->evaluate(v, k) : fourier->evaluate(v, k));
+  }
+};
+
+/// A condition ready to solve: u-space data (derivative curves are u-derivatives).
+struct ConditionData {
+  std::uint32_t derivative = 0;
+  double u = 0.0;
+  FourierCurve fourier;  ///< exactly M modes
+  std::vector<TailTerm> tail;
+  std::vector<Vec3> points;
+  std::vector<double> v;
+  bool collapsed = false;  ///< all points coincide (a section collapsed to a point)
+};
+
+/// R(t, v) = Σ_i ψ_i(t) d_i(v), ψ = φ_{M+1} · cardinal (ψ_i meets condition i only).
+struct SpectralTailData {
+  ModeBasis basis;
+  MatrixR cardinal;                          ///< order × order
+  std::vector<std::vector<TailTerm>> terms;  ///< per condition, u-space
+  std::vector<double> scale;                 ///< per condition: length^{k_i} (u → t space)
+  /// d_i^{(k)}(v) in t-space.
+  Vec3 difference(std::size_t i, double v, std::uint32_t k) const {
+    Vec3 d = Vec3::Zero();
+    for (const TailTerm& term : terms[i]) d += term.evaluate(v, k);
+    return scale[i] * d;
+  }
+};
+
+/// Fits or truncates a curve to M modes and builds its tail (when `remainder`).
+/// `what` prefixes error messages ("condition 3", "curve 2").
+ConditionData resolveCurve(const CurveInput& curve, std::uint32_t modes,
+                           VParameterization parameterization, bool remainder,
+                           const std::string& what);
+
+/// Solves a patch from resolved conditions on u ∈ [uStart, uEnd].
+SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, double uStart,
+                            double uEnd, std::vector<ConditionData> conditions);
+
+/// The k-th t-derivative curve of a patch at local t (t-space; chain patches have length 1):
+/// its Fourier part and the tail terms of the remainder.
+ConditionData derivativeCondition(const SpectralPatch& patch, double t, std::uint32_t k);
+
+/// Largest distance of a point set from its first point.
+double spread(const std::vector<Vec3>& points);
+
+}  // namespace pdesurf::spectral
