@@ -4,11 +4,13 @@
 // 300 points per curve and the remainder.
 #include <cmath>
 #include <numbers>
+#include <variant>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "pdesurf/spectral.hpp"
+#include "pdesurf/spectral_io.hpp"
 
 namespace {
 
@@ -102,9 +104,29 @@ void Order12_30x10_FromPoints(benchmark::State& s) {
   run(s, sections(shell, 12, kPi), 6, 30, 10, true);
 }
 
+/// Order 40 as examples/klein-bottle.json builds it (a = 2N = 40, sections at
+/// Chebyshev–Lobatto u: docs/examples.md); the seed's a = N is refused (docs/spectral.md).
+void Order40_40x10_KleinExample(benchmark::State& state) {
+  const auto model = std::get<pdesurf::SpectralModel>(
+      pdesurf::loadModel(PDESURF_SOURCE_DIR "/examples/klein-bottle.json"));
+  std::vector<double> us(40), vs(10);
+  for (int i = 0; i < 40; ++i) us[i] = i / 39.0;
+  for (int j = 0; j < 10; ++j) vs[j] = 2 * kPi * j / 10;
+  pdesurf::SpectralOptions options = model.options;
+  options.modes = kModes;
+  pdesurf::SpectralGrid grid;
+  for (auto _ : state) {
+    const pdesurf::SpectralPatch patch =
+        pdesurf::solveSpectral(model.op, model.conditions, options);
+    pdesurf::evaluateGrid(patch, us, vs, grid);
+    benchmark::DoNotOptimize(grid.p.data());
+  }
+}
+
 BENCHMARK(Order10_20x30)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Order12_30x10)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Order40_40x10)->Unit(benchmark::kMicrosecond);
+BENCHMARK(Order40_40x10_KleinExample)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Order10_20x30_FromPoints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(Order12_30x10_FromPoints)->Unit(benchmark::kMicrosecond);
 

@@ -61,9 +61,15 @@ void BM_SolveKnownTopology(benchmark::State& state) {
 }
 BENCHMARK(BM_SolveKnownTopology)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 
+/// The 1,024-frame sheet the tessellation rows use, solved.
+const VertexFrameSurface& tessellationSheet() {
+  static const VertexFrameSurface s = solve(sheet(32));
+  return s;
+}
+
 /// Tessellation with normals into a mesh whose buffers are reused; items = vertices.
 void BM_Tessellate(benchmark::State& state) {
-  const VertexFrameSurface s = solve(sheet(32));  // 1,024 frames
+  const VertexFrameSurface& s = tessellationSheet();
   const auto res = static_cast<std::uint32_t>(state.range(0));
   Mesh mesh;
   for (auto _ : state) {
@@ -76,37 +82,76 @@ void BM_Tessellate(benchmark::State& state) {
 }
 BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
 
-/// Baseline: write the same number of vertices (position and normal, 6 floats each) and
-/// the same triangle indices to reused buffers, computing nothing.
-void BM_WriteVerticesBaseline(benchmark::State& state) {
-  const VertexFrameSurface s = solve(sheet(32));
-  Mesh reference;
-  tessellate(s, {static_cast<std::uint32_t>(state.range(0))}, reference);
-  const std::size_t nv = reference.vertexCount(), nt = reference.triangleCount();
-  Mesh mesh = reference;
+/// Re-tessellation on an unchanged topology and resolution (a studio drag): a Tessellator
+/// alternates between two solutions of the sheet on one topology, the second with every
+/// vertex moved, so each call rewrites all positions and normals; items = vertices.
+void BM_Retessellate(benchmark::State& state) {
+  VertexFrameModel moved = sheet(32);
+  const auto topology = std::make_shared<const FrameTopology>(buildTopology(moved));
+  const VertexFrameSurface s0 = solve(moved, topology);
+  for (Vec3& v : moved.vertices) v.z() += 0.05 * std::cos(3.0 * v.x());
+  const VertexFrameSurface s1 = solve(moved, topology);
+  const auto res = static_cast<std::uint32_t>(state.range(0));
+  Tessellator tessellator;
+  tessellator.tessellate(s1, {res});  // lays the mesh out
+  bool second = false;
   for (auto _ : state) {
-    float* p = mesh.positions.data();
-    float* n = mesh.normals.data();
-    for (std::size_t v = 0; v < nv; ++v) {
-      const auto x = static_cast<float>(v);
-      p[3 * v] = x;
-      p[3 * v + 1] = x + 1.0f;
-      p[3 * v + 2] = x + 2.0f;
-      n[3 * v] = 0.0f;
-      n[3 * v + 1] = 0.0f;
-      n[3 * v + 2] = 1.0f;
-    }
-    std::uint32_t* idx = mesh.indices.data();
-    for (std::size_t t = 0; t < 3 * nt; ++t) idx[t] = static_cast<std::uint32_t>(t);
-    std::uint32_t* pid = mesh.patchIds.data();
-    for (std::size_t t = 0; t < nt; ++t) pid[t] = static_cast<std::uint32_t>(t >> 9);
+    const Mesh& mesh = tessellator.tessellate(second ? s1 : s0, {res});
+    second = !second;
+    benchmark::DoNotOptimize(mesh.positions.data());
+    benchmark::ClobberMemory();
+  }
+  const std::size_t nv = tessellator.mesh().vertexCount();
+  state.counters["vertices"] = static_cast<double>(nv);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
+}
+BENCHMARK(BM_Retessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+
+/// The baselines' writing: nv vertices (position and normal, 6 floats each) and, when
+/// `triangles`, the mesh's triangle indices and patch ids, into its existing buffers.
+void writeMeshData(Mesh& mesh, std::size_t nv, bool triangles) {
+  float* p = mesh.positions.data();
+  float* n = mesh.normals.data();
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto x = static_cast<float>(v);
+    p[3 * v] = x;
+    p[3 * v + 1] = x + 1.0f;
+    p[3 * v + 2] = x + 2.0f;
+    n[3 * v] = 0.0f;
+    n[3 * v + 1] = 0.0f;
+    n[3 * v + 2] = 1.0f;
+  }
+  if (!triangles) return;
+  std::uint32_t* idx = mesh.indices.data();
+  for (std::size_t t = 0; t < mesh.indices.size(); ++t) idx[t] = static_cast<std::uint32_t>(t);
+  std::uint32_t* pid = mesh.patchIds.data();
+  for (std::size_t t = 0; t < mesh.patchIds.size(); ++t)
+    pid[t] = static_cast<std::uint32_t>(t >> 9);
+}
+
+/// A baseline: the writing alone, into reused buffers sized as the tessellation's mesh.
+void writeBaseline(benchmark::State& state, bool triangles) {
+  Mesh mesh;
+  tessellate(tessellationSheet(), {static_cast<std::uint32_t>(state.range(0))}, mesh);
+  const std::size_t nv = mesh.vertexCount();
+  for (auto _ : state) {
+    writeMeshData(mesh, nv, triangles);
     benchmark::DoNotOptimize(mesh.positions.data());
     benchmark::ClobberMemory();
   }
   state.counters["vertices"] = static_cast<double>(nv);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
 }
+
+/// Baseline for a fresh tessellation: write the same number of vertices (position and
+/// normal, 6 floats each), the same triangle indices and the same patch ids, computing nothing.
+void BM_WriteVerticesBaseline(benchmark::State& state) { writeBaseline(state, true); }
 BENCHMARK(BM_WriteVerticesBaseline)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+
+/// The baseline in its own words, "writing the same number of vertices": positions
+/// and normals only (6 floats per vertex), the comparison for re-tessellation.
+void BM_WriteVertexDataBaseline(benchmark::State& state) { writeBaseline(state, false); }
+BENCHMARK(BM_WriteVertexDataBaseline)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -433,26 +433,34 @@ class StudioServer::Impl {
     return {{"curves", std::move(curves)}, {"spines", std::move(spines)}};
   }
 
-  /// The surface mesh of whatever model is open.
-  void meshOf(std::uint32_t resolution, const SolveOptions& options, Mesh& out, double& solveMs,
-              double& tessMs, double& gap) {
+  /// The surface mesh of whatever model is open, for the page: vertex frames through the
+  /// Tessellator (a drag keeps the topology, so only positions and normals are rewritten).
+  const Mesh& meshOf(std::uint32_t resolution, const SolveOptions& options, double& solveMs,
+                     double& tessMs, double& gap) {
     if (view_) {
       auto t0 = Clock::now();
-      out = tessellate(view_->solved, resolution);
+      viewMesh_ = tessellate(view_->solved, resolution);
       tessMs = msSince(t0);
       solveMs = 0.0;  // solved when opened
       gap = 0.0;
       if (view_->solved.chain)
         for (const JointGap& g : measureJointGaps(*view_->solved.chain)) gap = std::max(gap, g.c0);
-      return;
+      return viewMesh_;
     }
     auto t0 = Clock::now();
     const VertexFrameSurface& surface = session_->surface(options);
     solveMs = msSince(t0);
     t0 = Clock::now();
-    tessellate(surface, {resolution}, out);
+    const Mesh& mesh = tessellator_.tessellate(surface, {resolution});
     tessMs = msSince(t0);
     gap = measureC0Gap(surface).maxGap;
+    return mesh;
+  }
+
+  /// A mesh for a file (export), leaving the page's tessellation cache alone.
+  Mesh exportMesh(std::uint32_t resolution) {
+    return view_ ? tessellate(view_->solved, resolution)
+                 : tessellate(session_->surface(), {resolution});
   }
 
   /// The journal: the current model beside its file after every change. A pending
@@ -621,13 +629,13 @@ class StudioServer::Impl {
                                      std::numeric_limits<std::uint32_t>::max(), "base");
                   const SolveOptions options = solveOptions(req);
                   double solveMs = 0, tessMs = 0, gap = 0;
-                  meshOf(resolution, options, scratch_, solveMs, tessMs, gap);
-                  const bool delta = base != 0 && base == sentId_ && sameTopology(sent_, scratch_);
+                  const Mesh& mesh = meshOf(resolution, options, solveMs, tessMs, gap);
+                  const bool delta = base != 0 && base == sentId_ && sameTopology(sent_, mesh);
                   if (delta)
-                    sendMeshDelta(res, sent_, scratch_, revision(), resolution);
+                    sendMeshDelta(res, sent_, mesh, revision(), resolution);
                   else
-                    sendMesh(res, scratch_, revision(), resolution);
-                  std::swap(sent_, scratch_);
+                    sendMesh(res, mesh, revision(), resolution);
+                  sent_ = mesh;  // what the client now has (copies reuse sent_'s buffers)
                   sentId_ = ++meshCounter_;
                   if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
                   res.set_header("X-Mesh-Id", std::to_string(sentId_));
@@ -709,9 +717,7 @@ class StudioServer::Impl {
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
                    makeParent(path);
-                   Mesh mesh;
-                   double solveMs = 0, tessMs = 0, gap = 0;
-                   meshOf(resolution, {}, mesh, solveMs, tessMs, gap);
+                   const Mesh mesh = exportMesh(resolution);
                    try {
                      writeMesh(mesh, path.string());
                    } catch (const MeshIoError& e) {
@@ -842,7 +848,9 @@ class StudioServer::Impl {
   bool recovery_ = false;
   // The last mesh sent (GET /api/mesh) and its id; ids are never reused while the server
   // runs, so a client's `base` names exactly one mesh, across opened models too.
-  Mesh sent_, scratch_;
+  Tessellator tessellator_;  // the page's vertex-frame meshes
+  Mesh viewMesh_;            // the page's mesh of a view-only model
+  Mesh sent_;                // the last mesh sent (the base of a delta)
   struct View {
     std::string text;  ///< the file as read
     Json json;

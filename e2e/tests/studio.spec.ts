@@ -257,6 +257,7 @@ test.describe('a spectral model', () => {
     await expect(page.getByTestId('status')).toContainText('spectral model: view only');
     await expect(page.getByTestId('status')).toContainText('triangles');
     expect((await studio.state()).editable).toBe(false);
+    await expect(page.getByTestId('frame-caption')).toHaveText('Curves and spine (view only)');
     await page.waitForTimeout(300);
     await page.screenshot({ path: shot('shell.png') });
     const error = await page.evaluate(() =>

@@ -217,4 +217,35 @@ Mesh tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
 /// The same into `out`, reusing its buffers' capacity (no allocation when the sizes repeat).
 void tessellate(const VertexFrameSurface& surface, const TessellateOptions& options, Mesh& out);
 
+/// Tessellates a surface again and again, as an editor does while a vertex is dragged. The
+/// vertex layout, the triangles and the patch ids depend only on the topology and the
+/// resolution, so while those stay the same (the same `surface.topology` object, as
+/// `solve(model, topology)` keeps it, and the same resolution) a call rewrites only the
+/// positions and normals. Every call's mesh is bit-identical to `tessellate(surface, options)`.
+/// Not thread-safe: one Tessellator per thread.
+class Tessellator {
+ public:
+  Tessellator();
+  ~Tessellator();
+  Tessellator(Tessellator&&) noexcept;
+  Tessellator& operator=(Tessellator&&) noexcept;
+
+  /// The mesh of `surface`; the reference stays valid (and the mesh unchanged) until the next
+  /// call. Throws std::length_error as tessellate() does.
+  const Mesh& tessellate(const VertexFrameSurface& surface, const TessellateOptions& options = {});
+
+  /// The mesh of the last call.
+  const Mesh& mesh() const { return mesh_; }
+
+  /// Changes whenever a call lays the mesh out afresh: while it stays the same, the indices,
+  /// patch ids and vertex count of mesh() stay the same (only positions and normals change).
+  std::uint64_t layoutVersion() const { return layoutVersion_; }
+
+ private:
+  struct Cache;  // the layout, the topology it was made for, and scratch buffers
+  std::unique_ptr<Cache> cache_;
+  Mesh mesh_;
+  std::uint64_t layoutVersion_ = 0;
+};
+
 }  // namespace pdesurf

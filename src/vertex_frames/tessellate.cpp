@@ -1,15 +1,21 @@
 // Watertight tessellation of a solved vertex-frame surface.
 //
-// Vertex numbering: first the corners (one per model vertex used as a frame corner), then
-// the inner points of every non-collapsed edge (in the direction of the edge's first
-// side), then each patch's interior grid. Boundary vertices therefore come first, and
-// their normals are accumulated over the patches that meet there, then normalised.
+// Vertex numbering (the layout, a function of the topology and the resolution alone): first
+// the corners (one per model vertex used as a frame corner), then the inner points of every
+// non-collapsed edge (in the direction of the edge's first side), then each patch's interior
+// grid, row after row. Boundary vertices therefore come first, and their normals are
+// accumulated over the patches that meet there, then normalised.
 //
-// Speed: a patch is a cubic in u per row once its v-powers are folded (foldRow), so each
-// row is one fused, vectorised loop (position, both derivatives, the unit normal, written
-// as floats) over a row padded to whole vector registers; force terms, products of per-u
-// and per-v tables, are summed per row only where a force reaches it. Interior rows of a
-// patch are contiguous in the mesh and are copied there whole.
+// Speed: along a row (v fixed) a patch is a cubic in u once its v-powers are folded
+// (foldLines), and its unnormalised normal Su × Sv, a product of two quadratics, is a quartic;
+// so a row costs two polynomial evaluations per point in one fused, vectorised loop, written
+// as floats straight into the mesh (interior rows are contiguous there). Rows are covered by
+// whole blocks of vector width, the last block overlapping the one before (it rewrites the
+// same values), so no remainder loop. Force terms, products of per-u and per-v tables, are
+// summed per row only where a force reaches it. The boundary ring (two rows and two columns;
+// a column is a row with u and v exchanged) goes through small buffers, since its normals
+// are summed over patches. A Tessellator keeps the layout and the triangles, so that a
+// surface re-solved on the same topology rewrites positions and normals only.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -25,16 +31,24 @@ namespace {
 
 constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
-/// Doubles in one vector register (AVX-512 holds 8; rows padded to this suit AVX2 too).
+/// Doubles in one vector register (AVX-512 holds 8): buffers are padded to this.
 constexpr std::size_t kLanes = 8;
+/// Points per block of the row kernel on rows long enough (two AVX-512 registers of doubles
+/// make one register of floats).
+constexpr std::size_t kWideBlock = 16;
 
 /// A normal counts as degenerate (a pole, a cusp) when |Su × Sv| is below this fraction of
 /// the patch's squared size: far below any real surface, far above rounding noise (1e-16).
 constexpr double kDegenerateNormalSine = 1e-10;
+constexpr double kDegenerate2 = kDegenerateNormalSine * kDegenerateNormalSine;
 /// A summed boundary normal shorter than this (a sum of unit vectors) has cancelled out.
 constexpr float kCancelledNormal = 1e-3f;
 /// Where the normal is degenerate it is taken this far inside the patch, towards its centre.
 constexpr double kNormalInset = 1e-4;
+
+/// The monomials 1 u u² u³ v v² v³ uv u²v uv² (seed eq. 4) with u and v exchanged: a column
+/// (u fixed) of a patch is a row of the patch whose coefficients are permuted so.
+constexpr int kSwapUV[10] = {0, 4, 5, 6, 1, 2, 3, 7, 9, 8};
 
 /// Grid parameters: t[i] = i/(n-1), exactly 0 and 1 at the ends.
 std::vector<double> gridParams(std::uint32_t n) {
@@ -60,104 +74,184 @@ struct ForceTables {
   std::vector<double> su, dsu, sv, dsv;
 };
 
-/// The summed force terms of row j, as 9 rows of np values (position, ∂u, ∂v; x y z
-/// each): Σ k ⊙ (s(u) s(v), s'(u) s(v), s(u) s'(v)). False when no force reaches row j.
-bool rowForces(const VertexFramePatch& patch, const std::vector<ForceTables>& tables, std::size_t j,
-               std::size_t np, std::vector<double>& out) {
+/// The summed force terms along a row (v = t[fixed]) or a column (u = t[fixed]), as 9 rows
+/// of np values (position, derivative along the line, derivative across it; x y z each):
+/// Σ k ⊙ (s s̃, s' s̃, s s̃'), s along the line and s̃ at the fixed parameter, the derivatives
+/// divided by the patch's size bound as in foldLines. False when no force reaches the line.
+bool lineForces(const VertexFramePatch& patch, const std::vector<ForceTables>& tables, bool column,
+                std::size_t fixed, std::size_t np, double invScale, std::vector<double>& out) {
   bool any = false;
   for (std::size_t f = 0; f < patch.forces.size(); ++f) {
     const ForceTables& ft = tables[f];
-    if (ft.sv[j] == 0.0 && ft.dsv[j] == 0.0) continue;
+    const double* s = column ? ft.sv.data() : ft.su.data();
+    const double* ds = column ? ft.dsv.data() : ft.dsu.data();
+    const double across = column ? ft.su[fixed] : ft.sv[fixed];
+    const double dAcross = column ? ft.dsu[fixed] : ft.dsv[fixed];
+    if (across == 0.0 && dAcross == 0.0) continue;
     if (!any) out.assign(9 * np, 0.0);
     any = true;
     for (int c = 0; c < 3; ++c) {
-      const double kv = patch.forces[f].k[c] * ft.sv[j], kdv = patch.forces[f].k[c] * ft.dsv[j];
+      const double kv = patch.forces[f].k[c] * across;
+      const double kda = kv * invScale, kdc = patch.forces[f].k[c] * dAcross * invScale;
       double* p = out.data() + c * np;
-      double* du = out.data() + (3 + c) * np;
-      double* dv = out.data() + (6 + c) * np;
+      double* da = out.data() + (3 + c) * np;
+      double* dc = out.data() + (6 + c) * np;
       for (std::size_t i = 0; i < np; ++i) {
-        p[i] += kv * ft.su[i];
-        du[i] += kv * ft.dsu[i];
-        dv[i] += kdv * ft.su[i];
+        p[i] += kv * s[i];
+        da[i] += kda * ds[i];
+        dc[i] += kdc * s[i];
       }
     }
   }
   return any;
 }
 
-/// Row j of a patch folded over its v-powers, per component: S = Σ_i p[i] u^i,
-/// Su = Σ_i du[i] u^i, Sv = Σ_i dv[i] u^i (cubic, quadratic and quadratic in u).
-struct RowPolynomials {
-  double p[3][4], du[3][3], dv[3][3];
+/// Lines of a patch folded over their fixed parameter, per component, in the line's own
+/// parameter x: S = Σ p[i] x^i, the derivative along the line Sa = Σ da[i] x^i and across it
+/// Sc = Σ dc[i] x^i (cubic, quadratic, quadratic); da and dc are divided by the patch's size
+/// bound. The normal numerator sign·(Sa × Sc) = Σ nrm[i] x^i is a quartic. Stored field by
+/// field, a line per entry (field f of line j at f·stride + j), so that folding every row
+/// of a patch is one vectorised loop.
+constexpr std::size_t kFieldP = 0;     // p[k][i] at kFieldP + 4k + i
+constexpr std::size_t kFieldDa = 12;   // da[k][i] at kFieldDa + 3k + i
+constexpr std::size_t kFieldDc = 21;   // dc[k][i] at kFieldDc + 3k + i
+constexpr std::size_t kFieldNrm = 30;  // nrm[k][i] at kFieldNrm + 5k + i
+constexpr std::size_t kFields = 45;
+
+/// One folded line: its first field and the stride between fields.
+struct LinePolynomials {
+  const double* field;
+  std::size_t stride;
+  double sign;  ///< ±1: orients Sa × Sc as the mesh's normals (nrm includes it)
+  double operator()(std::size_t f) const { return field[f * stride]; }
 };
 
-RowPolynomials foldRow(const double (&c)[3][10], double v) {
-  RowPolynomials r;
-  const double v2 = v * v, v3 = v2 * v;
-  for (int k = 0; k < 3; ++k) {
-    const double* a = c[k];  // monomials 1 u u² u³ v v² v³ uv u²v uv² (seed eq. 4)
-    r.p[k][0] = a[0] + v * a[4] + v2 * a[5] + v3 * a[6];
-    r.p[k][1] = a[1] + v * a[7] + v2 * a[9];
-    r.p[k][2] = a[2] + v * a[8];
-    r.p[k][3] = a[3];
-    r.du[k][0] = r.p[k][1];
-    r.du[k][1] = 2.0 * r.p[k][2];
-    r.du[k][2] = 3.0 * a[3];
-    r.dv[k][0] = a[4] + 2.0 * v * a[5] + 3.0 * v2 * a[6];
-    r.dv[k][1] = a[7] + 2.0 * v * a[9];
-    r.dv[k][2] = a[8];
-  }
-  return r;
-}
-
-/// S and the unit normal flip·(Su×Sv)/|Su×Sv| at `count` points u[i] of one row, plus
-/// force terms (9 arrays at `forceStride`: position, ∂u, ∂v; x y z each) when Forces.
-/// Writes positions and normals as interleaved floats and |Su×Sv|² for degeneracy checks.
-/// One function with restrict parameters so that the compiler vectorises the loop.
-template <bool Forces>
-void evaluateRow(const double* __restrict u, std::size_t count, const RowPolynomials& r,
-                 const double* __restrict force, std::size_t forceStride, double flip,
-                 double invScale, float* __restrict pos, float* __restrict nor,
-                 double* __restrict cross2) {
-  for (std::size_t i = 0; i < count; ++i) {
-    const double x = u[i];
-    double p[3], du[3], dv[3];
+/// Folds lines y[0..count) of a patch. `a` holds the coefficients (per component, monomials
+/// as in VertexFramePatch) with its parameters ordered (along, across); y is the across one.
+void foldLines(const double (&a)[3][10], const double* __restrict y, std::size_t count, double sign,
+               double invScale, double* __restrict out, std::size_t stride) {
+  for (std::size_t j = 0; j < count; ++j) {
+    const double y1 = y[j], y2 = y1 * y1, y3 = y2 * y1;
+    double da[3][3], dc[3][3];
     for (int k = 0; k < 3; ++k) {
-      p[k] = r.p[k][0] + x * (r.p[k][1] + x * (r.p[k][2] + x * r.p[k][3]));
-      du[k] = r.du[k][0] + x * (r.du[k][1] + x * r.du[k][2]);
-      dv[k] = r.dv[k][0] + x * (r.dv[k][1] + x * r.dv[k][2]);
-      if constexpr (Forces) {
-        p[k] += force[k * forceStride + i];
-        du[k] += force[(3 + k) * forceStride + i];
-        dv[k] += force[(6 + k) * forceStride + i];
+      const double* c = a[k];
+      const double p1 = c[1] + y1 * c[7] + y2 * c[9], p2 = c[2] + y1 * c[8];
+      out[(kFieldP + 4 * k) * stride + j] = c[0] + y1 * c[4] + y2 * c[5] + y3 * c[6];
+      out[(kFieldP + 4 * k + 1) * stride + j] = p1;
+      out[(kFieldP + 4 * k + 2) * stride + j] = p2;
+      out[(kFieldP + 4 * k + 3) * stride + j] = c[3];
+      da[k][0] = p1 * invScale;
+      da[k][1] = 2.0 * p2 * invScale;
+      da[k][2] = 3.0 * c[3] * invScale;
+      dc[k][0] = (c[4] + 2.0 * y1 * c[5] + 3.0 * y2 * c[6]) * invScale;
+      dc[k][1] = (c[7] + 2.0 * y1 * c[9]) * invScale;
+      dc[k][2] = c[8] * invScale;
+      for (int i = 0; i < 3; ++i) {
+        out[(kFieldDa + 3 * k + i) * stride + j] = da[k][i];
+        out[(kFieldDc + 3 * k + i) * stride + j] = dc[k][i];
       }
     }
-    // Tangents divided by the patch's size bound: no overflow or underflow in the cross
-    // product for any finite model, and |Su × Sv|² becomes a scale-free sine².
-    for (int k = 0; k < 3; ++k) {
-      du[k] *= invScale;
-      dv[k] *= invScale;
-    }
-    const double nx = du[1] * dv[2] - du[2] * dv[1];
-    const double ny = du[2] * dv[0] - du[0] * dv[2];
-    const double nz = du[0] * dv[1] - du[1] * dv[0];
-    const double len2 = nx * nx + ny * ny + nz * nz;
-    const double inv = flip / std::sqrt(len2);
-    cross2[i] = len2;
-    pos[3 * i] = static_cast<float>(p[0]);
-    pos[3 * i + 1] = static_cast<float>(p[1]);
-    pos[3 * i + 2] = static_cast<float>(p[2]);
-    nor[3 * i] = static_cast<float>(nx * inv);
-    nor[3 * i + 1] = static_cast<float>(ny * inv);
-    nor[3 * i + 2] = static_cast<float>(nz * inv);
+    // nrm = sign · Σ_{i+l=m} da_i × dc_l, the coefficients of the product of the quadratics.
+    double m[3][5] = {};
+    for (int i = 0; i < 3; ++i)
+      for (int l = 0; l < 3; ++l) {
+        m[0][i + l] += da[1][i] * dc[2][l] - da[2][i] * dc[1][l];
+        m[1][i + l] += da[2][i] * dc[0][l] - da[0][i] * dc[2][l];
+        m[2][i + l] += da[0][i] * dc[1][l] - da[1][i] * dc[0][l];
+      }
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 5; ++i) out[(kFieldNrm + 5 * k + i) * stride + j] = sign * m[k][i];
   }
 }
 
-/// Whether any x[i] is not above `threshold` (NaN counts); vectorises as a standalone loop.
-bool anyNotAbove(const double* __restrict x, std::size_t m, double threshold) {
-  std::uint32_t count = 0;
-  for (std::size_t i = 0; i < m; ++i) count += !(x[i] > threshold);
-  return count != 0;
+/// S and the unit normal at the B points x[0..B) of one line, plus force terms (9 arrays at
+/// `forceStride`: position, along, across; x y z each) when Forces. Writes positions and
+/// normals as interleaved floats and |Sa × Sc|² (scale-free: a sine²) for degeneracy checks.
+/// Without forces the normal is the folded quartic; with them, the cross product per point.
+/// Returns how many points are degenerate (|Sa × Sc|² not above kDegenerate2, or NaN).
+/// A fixed trip count and restrict parameters let the compiler vectorise the whole block.
+template <std::size_t B, bool Forces>
+inline std::uint32_t evaluateBlock(const double* __restrict x, const LinePolynomials& line,
+                                   const double* __restrict force, std::size_t forceStride,
+                                   float* __restrict pos, float* __restrict nor,
+                                   double* __restrict cross2) {
+  struct {
+    double p[3][4], da[3][3], dc[3][3], nrm[3][5], sign;
+  } r;
+  r.sign = line.sign;
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t i = 0; i < 4; ++i) r.p[k][i] = line(kFieldP + 4 * k + i);
+    for (std::size_t i = 0; i < 5; ++i) r.nrm[k][i] = Forces ? 0.0 : line(kFieldNrm + 5 * k + i);
+    for (std::size_t i = 0; i < 3; ++i) {
+      r.da[k][i] = Forces ? line(kFieldDa + 3 * k + i) : 0.0;
+      r.dc[k][i] = Forces ? line(kFieldDc + 3 * k + i) : 0.0;
+    }
+  }
+  std::uint32_t degenerate = 0;
+  // Positions, then normals: two passes over the block need fewer registers than one.
+  for (std::size_t i = 0; i < B; ++i) {
+    const double t = x[i];
+    for (int k = 0; k < 3; ++k) {
+      double p = r.p[k][0] + t * (r.p[k][1] + t * (r.p[k][2] + t * r.p[k][3]));
+      if constexpr (Forces) p += force[k * forceStride + i];
+      pos[3 * i + k] = static_cast<float>(p);
+    }
+  }
+  for (std::size_t i = 0; i < B; ++i) {
+    const double t = x[i];
+    double nv[3];
+    if constexpr (Forces) {
+      double da[3], dc[3];
+      for (int k = 0; k < 3; ++k) {
+        da[k] = r.da[k][0] + t * (r.da[k][1] + t * r.da[k][2]) + force[(3 + k) * forceStride + i];
+        dc[k] = r.dc[k][0] + t * (r.dc[k][1] + t * r.dc[k][2]) + force[(6 + k) * forceStride + i];
+      }
+      nv[0] = r.sign * (da[1] * dc[2] - da[2] * dc[1]);
+      nv[1] = r.sign * (da[2] * dc[0] - da[0] * dc[2]);
+      nv[2] = r.sign * (da[0] * dc[1] - da[1] * dc[0]);
+    } else {
+      for (int k = 0; k < 3; ++k)
+        nv[k] = r.nrm[k][0] +
+                t * (r.nrm[k][1] + t * (r.nrm[k][2] + t * (r.nrm[k][3] + t * r.nrm[k][4])));
+    }
+    const double len2 = nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2];
+    // The length in single precision, which the float normal needs (and where the square
+    // root and division cost a fraction of double's). len2 is a sine², at most a few units;
+    // where it underflows float the point is degenerate, and its normal is replaced.
+    const float inv = 1.0f / std::sqrt(static_cast<float>(len2));
+    cross2[i] = len2;
+    degenerate += !(len2 > kDegenerate2);
+    nor[3 * i] = static_cast<float>(nv[0]) * inv;
+    nor[3 * i + 1] = static_cast<float>(nv[1]) * inv;
+    nor[3 * i + 2] = static_cast<float>(nv[2]) * inv;
+  }
+  return degenerate;
+}
+
+/// evaluateBlock over `count` ≥ B points: whole blocks, the last one shifted back to end at
+/// `count` (its overlap with the block before is written twice, with the same values).
+/// Returns whether any point is degenerate.
+template <std::size_t B, bool Forces>
+bool evaluateSpan(const double* x, std::size_t count, const LinePolynomials& r, const double* force,
+                  std::size_t forceStride, float* pos, float* nor, double* cross2) {
+  std::uint32_t degenerate = 0;
+  for (std::size_t i = 0;; i += B) {
+    if (i + B > count) i = count - B;
+    degenerate += evaluateBlock<B, Forces>(x + i, r, Forces ? force + i : nullptr, forceStride,
+                                           pos + 3 * i, nor + 3 * i, cross2 + i);
+    if (i + B >= count) break;
+  }
+  return degenerate != 0;
+}
+
+/// evaluateSpan with or without forces, in the widest blocks that fit.
+bool evaluateLine(const double* x, std::size_t count, const LinePolynomials& r, const double* force,
+                  std::size_t forceStride, float* pos, float* nor, double* cross2) {
+  if (count >= kWideBlock)
+    return force ? evaluateSpan<kWideBlock, true>(x, count, r, force, forceStride, pos, nor, cross2)
+                 : evaluateSpan<kWideBlock, false>(x, count, r, nullptr, 0, pos, nor, cross2);
+  return force ? evaluateSpan<kLanes, true>(x, count, r, force, forceStride, pos, nor, cross2)
+               : evaluateSpan<kLanes, false>(x, count, r, nullptr, 0, pos, nor, cross2);
 }
 
 /// Quads whose four corners are patch-interior points have ids a, a+1 (row j-1) and
@@ -215,35 +309,66 @@ inline void writeQuadAlt(std::uint32_t a, std::uint32_t b, std::uint32_t c, std:
   o[5] = flip ? c : d;
 }
 
-}  // namespace
+/// The mesh ids of one patch's boundary, side after side (Alpha, Delta, Beta, Gamma), each
+/// side's n points in the side's own direction, and what the triangle writer needs to know.
+struct PatchRing {
+  bool collapsedSide[4];
+  /// +1 (-1) when the side's inner points are the consecutive ids ring[1], ring[1] + 1, …
+  /// (ring[1], ring[1] - 1, …) of an edge that is neither a loop nor collapsed; else 0.
+  std::int8_t run[4];
+  bool anyCollapsed;
+  bool repeatsIds;  ///< some boundary points of this patch are one mesh vertex
+};
 
-Mesh tessellate(const VertexFrameSurface& surface, const TessellateOptions& options) {
-  Mesh mesh;
-  tessellate(surface, options, mesh);
-  return mesh;
-}
+/// Tessellates surfaces laid out for one topology and resolution: layOut numbers the
+/// vertices (and checks that the mesh fits 32-bit indices), run writes a surface's vertices,
+/// and its triangles when asked. Holds every scratch buffer, so repeated runs do not allocate.
+class TessellationEngine {
+ public:
+  void layOut(const FrameTopology& topo, std::uint32_t frames, std::uint32_t resolution);
+  void run(const VertexFrameSurface& surface, Mesh& mesh, bool writeTriangles);
 
-void tessellate(const VertexFrameSurface& surface, const TessellateOptions& options, Mesh& mesh) {
-  const FrameTopology& topo = *surface.topology;
-  const std::uint32_t n = std::max<std::uint32_t>(2, options.resolution);
+ private:
+  PatchRing ring(const FrameTopology& topo, std::uint32_t k, std::uint32_t* ids) const;
+  void evaluatePatchVertices(const VertexFramePatch& patch, double flip, const PatchRing& pr,
+                             const std::uint32_t* ring, std::uint32_t patchBase, Mesh& mesh);
+  std::size_t writePatchTriangles(std::uint32_t k, double flip, const PatchRing& pr,
+                                  const std::uint32_t* ring, std::uint32_t patchBase,
+                                  std::size_t triangles, Mesh& mesh);
+
+  // The layout.
+  std::uint32_t n_ = 0, inner_ = 0, frames_ = 0;
+  std::size_t np_ = 0;  ///< n rounded up to whole vectors: the length of line buffers
+  std::vector<std::uint32_t> cornerId_, edgeBase_;
+  std::uint32_t boundaryCount_ = 0, vertexCount_ = 0;
+  std::vector<double> t_, tp_;  ///< grid parameters; tp_ padded with copies of 1
+  std::array<std::uint32_t, 6 * kQuadBlock> pattern_{}, patternFlip_{};
+  /// Per patch: its boundary ring's 4n mesh ids (see PatchRing) and what the ring repeats.
+  std::vector<std::uint32_t> rings_;
+  std::vector<PatchRing> patchRings_;
+
+  // Scratch.
+  std::vector<std::uint32_t> ids0_, ids1_;
+  std::vector<float> linePos_, lineNor_, firstNormal_;
+  std::vector<double> lineCross2_, rowCross2_, rowFolds_, columnFolds_;
+  std::vector<std::uint8_t> hasFirst_;
+  std::vector<ForceTables> forceTables_;
+  std::vector<double> forceRow_;
+};
+
+void TessellationEngine::layOut(const FrameTopology& topo, std::uint32_t frames,
+                                std::uint32_t resolution) {
+  const std::uint32_t n = std::max<std::uint32_t>(2, resolution);
   const std::uint32_t inner = n - 2;
-  // The patch's grid buffers hold rows of np ≥ n points, np a multiple of kLanes, so the
-  // row kernel's vector loop covers every row without a scalar remainder.
-  const std::size_t np = (n + kLanes - 1) / kLanes * kLanes;
-  const std::size_t m = std::size_t{n} * np;
-  const auto nFrames = static_cast<std::uint32_t>(surface.patches.size());
-
-  // --- Vertex numbering.
   std::uint32_t next = 0;
   std::uint32_t maxVertex = 0;
   for (const ModelEdge& e : topo.edges)
     maxVertex = std::max({maxVertex, e.vertices[0], e.vertices[2]});
-  std::vector<std::uint32_t> cornerId(std::size_t{maxVertex} + 1, kNone);
-  for (std::uint32_t k = 0; k < nFrames; ++k)
+  cornerId_.assign(std::size_t{maxVertex} + 1, kNone);
+  for (std::uint32_t k = 0; k < frames; ++k)
     for (std::uint32_t e : topo.edgeOf[k])
       for (std::uint32_t v : {topo.edges[e].vertices[0], topo.edges[e].vertices[2]})
-        if (cornerId[v] == kNone) cornerId[v] = next++;
-  // Indices are 32-bit (as in glTF and GL): refuse meshes that do not fit.
+        if (cornerId_[v] == kNone) cornerId_[v] = next++;
   // Points inside an edge: none on a collapsed edge; on a loop a→m→a (pinned flat, so
   // symmetric: S(t) = S(1-t)) only the first half, its mirror image shares them.
   auto edgeInner = [&](const ModelEdge& e) -> std::uint32_t {
@@ -253,245 +378,388 @@ void tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
   std::uint64_t edgePoints = 0;
   for (const ModelEdge& e : topo.edges) edgePoints += edgeInner(e);
   const std::uint64_t vertices64 =
-      std::uint64_t{next} + edgePoints + std::uint64_t{nFrames} * inner * inner;
-  const std::uint64_t triangles64 = std::uint64_t{nFrames} * (n - 1) * (n - 1) * 2;
-  if (vertices64 >= kNone || triangles64 * 3 >= kNone)
+      std::uint64_t{next} + edgePoints + std::uint64_t{frames} * inner * inner;
+  const std::uint64_t triangles64 = std::uint64_t{frames} * (n - 1) * (n - 1) * 2;
+  // Indices are 32-bit (as in glTF and GL): refuse meshes that do not fit.
+  if (vertices64 >= kNone || triangles64 * 3 >= kNone) {
+    frames_ = 0;  // no valid layout
     throw std::length_error(fmt::format(
         "a mesh of {} frames at resolution {} would have {} vertices and {} triangles, more "
         "than 32-bit indices can address: lower the resolution",
-        nFrames, n, vertices64, triangles64));
-  std::vector<std::uint32_t> edgeBase(topo.edges.size(), kNone);
+        frames, n, vertices64, triangles64));
+  }
+  edgeBase_.assign(topo.edges.size(), kNone);
   for (std::size_t e = 0; e < topo.edges.size(); ++e) {
-    edgeBase[e] = next;
+    edgeBase_[e] = next;
     next += edgeInner(topo.edges[e]);
   }
-  const std::uint32_t boundaryCount = next;
-  const std::uint32_t interiorBase = next;
-  const auto vertexCount = static_cast<std::uint32_t>(vertices64);
+  n_ = n;
+  inner_ = inner;
+  frames_ = frames;
+  np_ = (n + kLanes - 1) / kLanes * kLanes;
+  boundaryCount_ = next;
+  vertexCount_ = static_cast<std::uint32_t>(vertices64);
+  t_ = gridParams(n);
+  tp_.assign(np_, 1.0);
+  std::copy(t_.begin(), t_.end(), tp_.begin());
+  pattern_ = interiorQuadPattern(inner, false);
+  patternFlip_ = interiorQuadPattern(inner, true);
+  rings_.resize(std::size_t{frames} * 4 * n);
+  patchRings_.resize(frames);
+  for (std::uint32_t k = 0; k < frames; ++k)
+    patchRings_[k] = ring(topo, k, rings_.data() + std::size_t{k} * 4 * n);
+  ids0_.resize(n);
+  ids1_.resize(n);
+  linePos_.resize(4 * 3 * np_);
+  lineNor_.resize(4 * 3 * np_);
+  lineCross2_.resize(4 * np_);
+  rowCross2_.resize(np_);
+  rowFolds_.resize(kFields * np_);
+  columnFolds_.resize(kFields * 2);
+  firstNormal_.resize(std::size_t{boundaryCount_} * 3);
+  hasFirst_.resize(boundaryCount_);
+}
 
-  mesh.positions.resize(std::size_t{vertexCount} * 3);
-  mesh.normals.resize(std::size_t{vertexCount} * 3);
-  // Room for every quad's two triangles; collapsed sides drop some, trimmed at the end.
-  mesh.indices.resize(std::size_t{nFrames} * (n - 1) * (n - 1) * 6);
-  mesh.patchIds.resize(std::size_t{nFrames} * (n - 1) * (n - 1) * 2);
-  std::size_t triangles = 0;
-  // Boundary normals are sums over the patches that meet there, normalised at the end.
-  std::fill_n(mesh.normals.begin(), std::size_t{boundaryCount} * 3, 0.0f);
-  std::vector<float> firstNormal(std::size_t{boundaryCount} * 3);
-  std::vector<std::uint8_t> hasFirst(boundaryCount, 0);
-
-  // The flattened grid: point j·n + i at (t[i], t[j]).
-  const std::vector<double> t = gridParams(n);
-  std::vector<double> tp(np, 1.0);  // t padded with copies of its last value
-  std::copy(t.begin(), t.end(), tp.begin());
-  std::vector<float> pos(3 * m), nor(3 * m);
-  std::vector<double> cross2(m);
-  std::vector<std::uint32_t> ids0(n), ids1(n), ring(std::size_t{n} * 4);
-  std::vector<ForceTables> forceTables;
-  std::vector<double> forceRow;
-  const auto pattern = interiorQuadPattern(inner, false);
-  const auto patternFlip = interiorQuadPattern(inner, true);
-
-  for (std::uint32_t k = 0; k < nFrames; ++k) {
-    const VertexFramePatch& patch = surface.patches[k];
-    const double flip = topo.flipped[k] ? -1.0 : 1.0;
-    double c[3][10];
-    for (int comp = 0; comp < 3; ++comp)
-      for (int i = 0; i < 10; ++i) c[comp][i] = patch.c[i][comp];
-    // A bound on |Su| and |Sv| over the patch (each monomial's derivative is at most 3 on
-    // the unit square, |x| ≤ 2 max|x_c| in 3D), formed from maxima so it cannot overflow
-    // before the coordinates themselves would.
-    double scale = 0.0;
-    for (int i = 1; i < 10; ++i) scale += 6.0 * patch.c[i].cwiseAbs().maxCoeff();
-    for (const ForceTerm& f : patch.forces)
-      scale += 2.0 * M_PI * f.k.cwiseAbs().maxCoeff() /
-               std::min(f.region.u1 - f.region.u0, f.region.v1 - f.region.v0);
-    const double invScale = scale > 0.0 && std::isfinite(scale) ? 1.0 / scale : 1.0;
-    constexpr double degenerate2 = kDegenerateNormalSine * kDegenerateNormalSine;
-    forceTables.resize(patch.forces.size());
-    for (std::size_t f = 0; f < patch.forces.size(); ++f) {
-      const Region& r = patch.forces[f].region;
-      shapeTable(tp, r.u0, r.u1, forceTables[f].su, forceTables[f].dsu);
-      shapeTable(tp, r.v0, r.v1, forceTables[f].sv, forceTables[f].dsv);
-    }
-    for (std::uint32_t j = 0; j < n; ++j) {
-      const RowPolynomials rp = foldRow(c, t[j]);
-      const std::size_t g = j * np;
-      if (!rowForces(patch, forceTables, j, np, forceRow))
-        evaluateRow<false>(tp.data(), np, rp, nullptr, np, flip, invScale, pos.data() + 3 * g,
-                           nor.data() + 3 * g, cross2.data() + g);
+PatchRing TessellationEngine::ring(const FrameTopology& topo, std::uint32_t k,
+                                   std::uint32_t* ring) const {
+  const std::uint32_t n = n_;
+  PatchRing pr{};
+  for (int s = 0; s < 4; ++s) {
+    const std::uint32_t e = topo.edgeOf[k][s];
+    const ModelEdge& edge = topo.edges[e];
+    const bool rev = topo.sideReversed[k][s] != 0;
+    const bool loop = edge.vertices[0] == edge.vertices[2];
+    pr.collapsedSide[s] = edge.collapsed();
+    pr.run[s] = static_cast<std::int8_t>(edge.collapsed() || loop ? 0 : (rev ? -1 : 1));
+    pr.repeatsIds |= loop;
+    for (int s2 = 0; s2 < s; ++s2) pr.repeatsIds |= topo.edgeOf[k][s2] == e;
+    std::uint32_t* ids = ring + s * n;
+    ids[0] = cornerId_[rev ? edge.vertices[2] : edge.vertices[0]];
+    ids[n - 1] = cornerId_[rev ? edge.vertices[0] : edge.vertices[2]];
+    for (std::uint32_t q = 1; q + 1 < n; ++q) {
+      if (edge.collapsed())
+        ids[q] = ids[0];
+      else if (loop)
+        ids[q] = edgeBase_[e] + std::min(q, n - 1 - q) - 1;
       else
-        evaluateRow<true>(tp.data(), np, rp, forceRow.data(), np, flip, invScale,
-                          pos.data() + 3 * g, nor.data() + 3 * g, cross2.data() + g);
-    }
-    const std::uint32_t patchBase = interiorBase + k * inner * inner;
-
-    // Mesh ids of the patch's boundary ring, side by side in the side's own direction.
-    bool collapsedSide[4];
-    bool repeatsIds = false;  // some boundary points of this patch are one mesh vertex
-    for (int s = 0; s < 4; ++s) {
-      const std::uint32_t e = topo.edgeOf[k][s];
-      const ModelEdge& edge = topo.edges[e];
-      const bool rev = topo.sideReversed[k][s] != 0;
-      const bool loop = edge.vertices[0] == edge.vertices[2];
-      collapsedSide[s] = edge.collapsed();
-      repeatsIds |= loop;
-      for (int s2 = 0; s2 < s; ++s2) repeatsIds |= topo.edgeOf[k][s2] == e;
-      std::uint32_t* ids = ring.data() + s * n;
-      ids[0] = cornerId[rev ? edge.vertices[2] : edge.vertices[0]];
-      ids[n - 1] = cornerId[rev ? edge.vertices[0] : edge.vertices[2]];
-      for (std::uint32_t q = 1; q + 1 < n; ++q) {
-        if (edge.collapsed())
-          ids[q] = ids[0];
-        else if (loop)
-          ids[q] = edgeBase[e] + std::min(q, n - 1 - q) - 1;
-        else
-          ids[q] = edgeBase[e] + (rev ? n - 1 - q : q) - 1;
-      }
-    }
-    const bool anyCollapsed =
-        collapsedSide[0] || collapsedSide[1] || collapsedSide[2] || collapsedSide[3];
-    {
-      const std::uint32_t corners[4] = {ring[0], ring[n - 1], ring[2 * n + n - 1], ring[2 * n]};
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < a; ++b) repeatsIds |= corners[a] == corners[b];
-    }
-    repeatsIds |= anyCollapsed;
-
-    // Degenerate normals: |Su × Sv| < kDegenerateNormalSine · scale² (rounding noise at a
-    // pole, a cusp). Points on a collapsed side are a pole whatever rounding says. There
-    // the normal is taken from just inside the patch.
-    auto insetNormal = [&](std::size_t i, std::size_t j) {
-      const double uu = t[i] + kNormalInset * (0.5 - t[i]);
-      const double vv = t[j] + kNormalInset * (0.5 - t[j]);
-      const SurfacePoint sp = patch.evaluate(uu, vv);
-      Vec3 nrm = (sp.du * invScale).cross(sp.dv * invScale);
-      const double nl = nrm.norm();
-      nrm = nl > 0.0 ? Vec3(flip * nrm / nl) : Vec3::Zero();
-      for (int comp = 0; comp < 3; ++comp)
-        nor[3 * (j * np + i) + comp] = static_cast<float>(nrm[comp]);
-    };
-    for (std::size_t j = 0; j < n; ++j)
-      if (anyNotAbove(cross2.data() + j * np, n, degenerate2))
-        for (std::size_t i = 0; i < n; ++i)
-          if (!(cross2[j * np + i] > degenerate2)) insetNormal(i, j);
-    if (anyCollapsed)
-      for (std::size_t q = 0; q < n; ++q) {
-        if (collapsedSide[0]) insetNormal(q, 0);      // Alpha: row 0
-        if (collapsedSide[2]) insetNormal(q, n - 1);  // Beta: row n-1
-        if (collapsedSide[3]) insetNormal(0, q);      // Gamma: column 0
-        if (collapsedSide[1]) insetNormal(n - 1, q);  // Delta: column n-1
-      }
-
-    // Interior rows are contiguous in the mesh: copy them whole.
-    for (std::uint32_t j = 1; j + 1 < n; ++j) {
-      const std::size_t dst = std::size_t{patchBase + (j - 1) * inner} * 3;
-      const std::size_t src = (j * np + 1) * 3;
-      std::copy_n(pos.data() + src, 3 * inner, mesh.positions.data() + dst);
-      std::copy_n(nor.data() + src, 3 * inner, mesh.normals.data() + dst);
-    }
-
-    // Rows of mesh ids; boundary points set their position and add their normal.
-    std::uint32_t* rowIds = ids1.data();
-    std::uint32_t* prevIds = ids0.data();
-    for (std::uint32_t j = 0; j < n; ++j) {
-      std::swap(rowIds, prevIds);
-      if (j == 0) {
-        std::copy_n(ring.data(), n, rowIds);  // Alpha
-      } else if (j + 1 == n) {
-        std::copy_n(ring.data() + 2 * n, n, rowIds);  // Beta
-      } else {
-        rowIds[0] = ring[3 * n + j];      // Gamma
-        rowIds[n - 1] = ring[1 * n + j];  // Delta
-        const std::uint32_t base = patchBase + (j - 1) * inner - 1;
-        // Rows next to Alpha or Beta (and all rows of small or pole patches) take the
-        // generic quad writer, which reads the whole row; the pattern writer needs 4 ids.
-        const bool fullRow = j == 1 || j + 2 == n || repeatsIds || n < 4;
-        if (fullRow) {
-          for (std::uint32_t i = 1; i + 1 < n; ++i) rowIds[i] = base + i;
-        } else {
-          rowIds[1] = base + 1;
-          rowIds[n - 2] = base + n - 2;
-        }
-      }
-      auto storeBoundary = [&](std::uint32_t i) {
-        const std::size_t o = std::size_t{rowIds[i]} * 3, g = (j * np + i) * 3;
-        if (!hasFirst[rowIds[i]]) {
-          hasFirst[rowIds[i]] = 1;
-          std::copy_n(nor.data() + g, 3, firstNormal.data() + o);
-        }
-        for (int comp = 0; comp < 3; ++comp) {
-          mesh.positions[o + comp] = pos[g + comp];
-          mesh.normals[o + comp] += nor[g + comp];
-        }
-      };
-      if (j == 0 || j + 1 == n) {
-        for (std::uint32_t i = 0; i < n; ++i) storeBoundary(i);
-      } else {
-        storeBoundary(0);
-        storeBoundary(n - 1);
-      }
-
-      // Triangles between row j-1 and row j: quad (prev i, prev i+1, row i+1, row i).
-      if (j == 0) continue;
-      std::uint32_t* out = mesh.indices.data() + triangles * 3;
-      std::uint32_t* outPatch = mesh.patchIds.data() + triangles;
-      // The quads at corners (1,0) and (0,1) are split through the corner, so that no
-      // triangle is made of boundary points alone: two frames that share both sides at a
-      // corner (a pillow) would otherwise emit the same triangle twice.
-      const std::uint32_t altQuad = n < 3 ? n : (j == 1 ? n - 2 : (j + 1 == n ? 0 : n));
-      auto quadAt = [&](std::uint32_t i, std::uint32_t* o) {
-        if (i == altQuad)
-          writeQuadAlt(prevIds[i], prevIds[i + 1], rowIds[i + 1], rowIds[i], flip < 0, o);
-        else if (flip < 0)
-          writeQuadRow<true>(prevIds + i, rowIds + i, 1, o);
-        else
-          writeQuadRow<false>(prevIds + i, rowIds + i, 1, o);
-      };
-      if (!repeatsIds) {  // no repeated ids: every quad gives two triangles
-        if (j >= 2 && j + 2 <= n && n >= 4) {
-          // Boundary quads at both ends, the patch-interior quads between them by pattern.
-          quadAt(0, out);
-          writeInteriorQuads(prevIds[1], n - 3, flip < 0 ? patternFlip : pattern, out + 6);
-          quadAt(n - 2, out + 6 * (n - 2));
-        } else {
-          if (flip < 0)
-            writeQuadRow<true>(prevIds, rowIds, n - 1, out);
-          else
-            writeQuadRow<false>(prevIds, rowIds, n - 1, out);
-          if (altQuad < n) quadAt(altQuad, out + 6 * altQuad);
-        }
-        std::fill_n(outPatch, 2 * (n - 1), k);
-        outPatch += 2 * (n - 1);
-      } else {
-        for (std::uint32_t i = 0; i + 1 < n; ++i) {
-          std::uint32_t quad[6];
-          quadAt(i, quad);
-          for (const std::uint32_t* tri : {quad, quad + 3}) {
-            if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-            std::copy_n(tri, 3, out);
-            out += 3;
-            *outPatch++ = k;
-          }
-        }
-      }
-      triangles = static_cast<std::size_t>(outPatch - mesh.patchIds.data());
+        ids[q] = edgeBase_[e] + (rev ? n - 1 - q : q) - 1;
     }
   }
-  mesh.indices.resize(triangles * 3);
-  mesh.patchIds.resize(triangles);
+  pr.anyCollapsed =
+      pr.collapsedSide[0] || pr.collapsedSide[1] || pr.collapsedSide[2] || pr.collapsedSide[3];
+  const std::uint32_t corners[4] = {ring[0], ring[n - 1], ring[2 * n + n - 1], ring[2 * n]};
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < a; ++b) pr.repeatsIds |= corners[a] == corners[b];
+  pr.repeatsIds |= pr.anyCollapsed;
+  return pr;
+}
 
-  for (std::uint32_t v = 0; v < boundaryCount; ++v) {
-    float* nv = mesh.normals.data() + std::size_t{v} * 3;
-    const float len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
-    if (len > kCancelledNormal) {
-      for (int comp = 0; comp < 3; ++comp) nv[comp] /= len;
+void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, double flip,
+                                               const PatchRing& pr, const std::uint32_t* ring,
+                                               std::uint32_t patchBase, Mesh& mesh) {
+  const std::uint32_t n = n_, inner = inner_;
+  const std::size_t np = np_;
+  double c[3][10], cSwapped[3][10];
+  for (int comp = 0; comp < 3; ++comp)
+    for (int i = 0; i < 10; ++i) {
+      c[comp][i] = patch.c[i][comp];
+      cSwapped[comp][i] = patch.c[kSwapUV[i]][comp];
+    }
+  // A bound on |Su| and |Sv| over the patch (each monomial's derivative is at most 3 on
+  // the unit square, |x| ≤ 2 max|x_c| in 3D), formed from maxima so it cannot overflow
+  // before the coordinates themselves would. Dividing the tangents by it keeps the cross
+  // product clear of overflow and underflow and makes |Su × Sv|² a scale-free sine².
+  double scale = 0.0;
+  for (int i = 1; i < 10; ++i) scale += 6.0 * patch.c[i].cwiseAbs().maxCoeff();
+  for (const ForceTerm& f : patch.forces)
+    scale += 2.0 * M_PI * f.k.cwiseAbs().maxCoeff() /
+             std::min(f.region.u1 - f.region.u0, f.region.v1 - f.region.v0);
+  const double invScale = scale > 0.0 && std::isfinite(scale) ? 1.0 / scale : 1.0;
+  forceTables_.resize(patch.forces.size());
+  for (std::size_t f = 0; f < patch.forces.size(); ++f) {
+    const Region& r = patch.forces[f].region;
+    shapeTable(tp_, r.u0, r.u1, forceTables_[f].su, forceTables_[f].dsu);
+    shapeTable(tp_, r.v0, r.v1, forceTables_[f].sv, forceTables_[f].dsv);
+  }
+  // Row j (column when `column`) of the patch, `count` points from parameter index `from`.
+  // Every row, and the two boundary columns; Sa × Sc is Su × Sv on a row, Sv × Su on a column.
+  foldLines(c, t_.data(), n, flip, invScale, rowFolds_.data(), np);
+  const double columnParams[2] = {0.0, 1.0};
+  foldLines(cSwapped, columnParams, 2, -flip, invScale, columnFolds_.data(), 2);
+  auto line = [&](bool column, std::size_t j, std::size_t from, std::size_t count, float* pos,
+                  float* nor, double* cross2) {
+    const LinePolynomials r =
+        column ? LinePolynomials{columnFolds_.data() + (j == 0 ? 0 : 1), 2, -flip}
+               : LinePolynomials{rowFolds_.data() + j, np, flip};
+    const bool forces = lineForces(patch, forceTables_, column, j, np, invScale, forceRow_);
+    return evaluateLine(tp_.data() + from, count, r, forces ? forceRow_.data() + from : nullptr, np,
+                        pos, nor, cross2);
+  };
+  // Degenerate normals: |Su × Sv| < kDegenerateNormalSine · scale² (rounding noise at a
+  // pole, a cusp). Points on a collapsed side are a pole whatever rounding says. There
+  // the normal is taken from just inside the patch.
+  auto insetNormal = [&](std::size_t i, std::size_t j, float* out) {
+    const double uu = t_[i] + kNormalInset * (0.5 - t_[i]);
+    const double vv = t_[j] + kNormalInset * (0.5 - t_[j]);
+    const SurfacePoint sp = patch.evaluate(uu, vv);
+    Vec3 nrm = (sp.du * invScale).cross(sp.dv * invScale);
+    const double nl = nrm.norm();
+    nrm = nl > 0.0 ? Vec3(flip * nrm / nl) : Vec3::Zero();
+    for (int comp = 0; comp < 3; ++comp) out[comp] = static_cast<float>(nrm[comp]);
+  };
+
+  // Interior rows, straight into the mesh (short rows through the line buffer).
+  for (std::uint32_t j = 1; j + 1 < n; ++j) {
+    const std::size_t first = std::size_t{patchBase + (j - 1) * inner} * 3;
+    float* pos = mesh.positions.data() + first;
+    float* nor = mesh.normals.data() + first;
+    bool degenerate;
+    if (inner >= kLanes) {
+      degenerate = line(false, j, 1, inner, pos, nor, rowCross2_.data());
     } else {
-      // The patches' normals cancel (the rim of a pillow, a fin folded back): no average
-      // direction exists, so the first patch's normal stands for all.
-      std::copy_n(firstNormal.data() + std::size_t{v} * 3, 3, nv);
+      line(false, j, 0, np, linePos_.data(), lineNor_.data(), rowCross2_.data());
+      std::copy_n(linePos_.data() + 3, 3 * inner, pos);
+      std::copy_n(lineNor_.data() + 3, 3 * inner, nor);
+      std::copy_n(rowCross2_.data() + 1, inner, rowCross2_.data());
+      degenerate = true;  // checked point by point below
+    }
+    if (degenerate)
+      for (std::uint32_t i = 0; i < inner; ++i)
+        if (!(rowCross2_[i] > kDegenerate2)) insetNormal(i + 1, j, nor + 3 * i);
+  }
+
+  // The boundary ring, side by side in each side's own direction (as the ring's ids run):
+  // Alpha (v = 0) and Beta (v = 1) are rows, Delta (u = 1) and Gamma (u = 0) columns.
+  for (int s = 0; s < 4; ++s) {
+    const bool column = s == 1 || s == 3;
+    const std::size_t fixed = s == 0 || s == 3 ? 0 : n - 1;
+    float* pos = linePos_.data() + s * 3 * np;
+    float* nor = lineNor_.data() + s * 3 * np;
+    double* cross2 = lineCross2_.data() + s * np;
+    line(column, fixed, 0, np, pos, nor, cross2);
+    auto at = [&](std::size_t q) -> std::array<std::size_t, 2> {  // grid (i, j) of point q
+      return column ? std::array<std::size_t, 2>{fixed, q} : std::array<std::size_t, 2>{q, fixed};
+    };
+    for (std::size_t q = 0; q < n; ++q)
+      if (pr.collapsedSide[s] || !(cross2[q] > kDegenerate2))
+        insetNormal(at(q)[0], at(q)[1], nor + 3 * q);
+    // Corners come with the rows; every other boundary point of the patch once.
+    const std::uint32_t* ids = ring + s * n;
+    float* __restrict positions = mesh.positions.data();
+    float* __restrict normals = mesh.normals.data();
+    float* __restrict firstNormal = firstNormal_.data();
+    std::uint8_t* __restrict hasFirst = hasFirst_.data();
+    auto store = [&](std::size_t q) {
+      const std::size_t o = std::size_t{ids[q]} * 3;
+      if (!hasFirst[ids[q]]) {
+        hasFirst[ids[q]] = 1;
+        for (int comp = 0; comp < 3; ++comp) firstNormal[o + comp] = nor[3 * q + comp];
+      }
+      for (int comp = 0; comp < 3; ++comp) {
+        positions[o + comp] = pos[3 * q + comp];
+        normals[o + comp] += nor[3 * q + comp];
+      }
+    };
+    if (!column) {
+      store(0);
+      store(n - 1);
+    }
+    if (pr.run[s] == 0) {
+      for (std::size_t q = 1; q + 1 < n; ++q) store(q);
+      continue;
+    }
+    // An edge's inner points are visited together, by the same patches in the same order:
+    // one of them tells whether this is the first visit. Then whole runs, which vectorise.
+    const std::size_t count = inner, o = std::size_t{ids[1]} * 3;
+    const bool reversed = pr.run[s] < 0;
+    const std::size_t start = reversed ? o - 3 * (count - 1) : o;  // lowest id's first float
+    if (!hasFirst[ids[1]]) {
+      std::fill_n(hasFirst + start / 3, count, std::uint8_t{1});
+      for (std::size_t r = 0; r < count; ++r)
+        for (int comp = 0; comp < 3; ++comp)
+          firstNormal[start + 3 * r + comp] = nor[3 * (reversed ? count - r : r + 1) + comp];
+    }
+    if (reversed) {
+      for (std::size_t r = 0; r < count; ++r)
+        for (int comp = 0; comp < 3; ++comp) {
+          positions[start + 3 * r + comp] = pos[3 * (count - r) + comp];
+          normals[start + 3 * r + comp] += nor[3 * (count - r) + comp];
+        }
+    } else {
+      for (std::size_t e = 0; e < 3 * count; ++e) {
+        positions[start + e] = pos[3 + e];
+        normals[start + e] += nor[3 + e];
+      }
     }
   }
+}
+
+std::size_t TessellationEngine::writePatchTriangles(std::uint32_t k, double flip,
+                                                    const PatchRing& pr, const std::uint32_t* ring,
+                                                    std::uint32_t patchBase, std::size_t triangles,
+                                                    Mesh& mesh) {
+  const std::uint32_t n = n_, inner = inner_;
+  std::uint32_t* rowIds = ids1_.data();
+  std::uint32_t* prevIds = ids0_.data();
+  for (std::uint32_t j = 0; j < n; ++j) {
+    std::swap(rowIds, prevIds);
+    if (j == 0) {
+      std::copy_n(ring, n, rowIds);  // Alpha
+    } else if (j + 1 == n) {
+      std::copy_n(ring + 2 * n, n, rowIds);  // Beta
+    } else {
+      rowIds[0] = ring[3 * n + j];      // Gamma
+      rowIds[n - 1] = ring[1 * n + j];  // Delta
+      const std::uint32_t base = patchBase + (j - 1) * inner - 1;
+      // Rows next to Alpha or Beta (and all rows of small or pole patches) take the
+      // generic quad writer, which reads the whole row; the pattern writer needs 4 ids.
+      const bool fullRow = j == 1 || j + 2 == n || pr.repeatsIds || n < 4;
+      if (fullRow) {
+        for (std::uint32_t i = 1; i + 1 < n; ++i) rowIds[i] = base + i;
+      } else {
+        rowIds[1] = base + 1;
+        rowIds[n - 2] = base + n - 2;
+      }
+    }
+
+    // Triangles between row j-1 and row j: quad (prev i, prev i+1, row i+1, row i).
+    if (j == 0) continue;
+    std::uint32_t* out = mesh.indices.data() + triangles * 3;
+    std::uint32_t* outPatch = mesh.patchIds.data() + triangles;
+    // The quads at corners (1,0) and (0,1) are split through the corner, so that no
+    // triangle is made of boundary points alone: two frames that share both sides at a
+    // corner (a pillow) would otherwise emit the same triangle twice.
+    const std::uint32_t altQuad = n < 3 ? n : (j == 1 ? n - 2 : (j + 1 == n ? 0 : n));
+    auto quadAt = [&](std::uint32_t i, std::uint32_t* o) {
+      if (i == altQuad)
+        writeQuadAlt(prevIds[i], prevIds[i + 1], rowIds[i + 1], rowIds[i], flip < 0, o);
+      else if (flip < 0)
+        writeQuadRow<true>(prevIds + i, rowIds + i, 1, o);
+      else
+        writeQuadRow<false>(prevIds + i, rowIds + i, 1, o);
+    };
+    if (!pr.repeatsIds) {  // no repeated ids: every quad gives two triangles
+      if (j >= 2 && j + 2 <= n && n >= 4) {
+        // Boundary quads at both ends, the patch-interior quads between them by pattern.
+        quadAt(0, out);
+        writeInteriorQuads(prevIds[1], n - 3, flip < 0 ? patternFlip_ : pattern_, out + 6);
+        quadAt(n - 2, out + 6 * (n - 2));
+      } else {
+        if (flip < 0)
+          writeQuadRow<true>(prevIds, rowIds, n - 1, out);
+        else
+          writeQuadRow<false>(prevIds, rowIds, n - 1, out);
+        if (altQuad < n) quadAt(altQuad, out + 6 * altQuad);
+      }
+      std::fill_n(outPatch, 2 * (n - 1), k);
+      outPatch += 2 * (n - 1);
+    } else {
+      for (std::uint32_t i = 0; i + 1 < n; ++i) {
+        std::uint32_t quad[6];
+        quadAt(i, quad);
+        for (const std::uint32_t* tri : {quad, quad + 3}) {
+          if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+          std::copy_n(tri, 3, out);
+          out += 3;
+          *outPatch++ = k;
+        }
+      }
+    }
+    triangles = static_cast<std::size_t>(outPatch - mesh.patchIds.data());
+  }
+  return triangles;
+}
+
+void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool writeTriangles) {
+  const FrameTopology& topo = *surface.topology;
+  const std::uint32_t n = n_, inner = inner_;
+  mesh.positions.resize(std::size_t{vertexCount_} * 3);
+  mesh.normals.resize(std::size_t{vertexCount_} * 3);
+  if (writeTriangles) {
+    // Room for every quad's two triangles; collapsed sides drop some, trimmed at the end.
+    mesh.indices.resize(std::size_t{frames_} * (n - 1) * (n - 1) * 6);
+    mesh.patchIds.resize(std::size_t{frames_} * (n - 1) * (n - 1) * 2);
+  }
+  // Boundary normals are sums over the patches that meet there, normalised at the end.
+  std::fill_n(mesh.normals.begin(), std::size_t{boundaryCount_} * 3, 0.0f);
+  std::fill(hasFirst_.begin(), hasFirst_.end(), std::uint8_t{0});
+  std::size_t triangles = 0;
+  for (std::uint32_t k = 0; k < frames_; ++k) {
+    const double flip = topo.flipped[k] ? -1.0 : 1.0;
+    const PatchRing& pr = patchRings_[k];
+    const std::uint32_t* ring = rings_.data() + std::size_t{k} * 4 * n;
+    const std::uint32_t patchBase = boundaryCount_ + k * inner * inner;
+    evaluatePatchVertices(surface.patches[k], flip, pr, ring, patchBase, mesh);
+    if (writeTriangles)
+      triangles = writePatchTriangles(k, flip, pr, ring, patchBase, triangles, mesh);
+  }
+  if (writeTriangles) {
+    mesh.indices.resize(triangles * 3);
+    mesh.patchIds.resize(triangles);
+  }
+
+  // Where the patches' normals cancel (the rim of a pillow, a fin folded back) no average
+  // direction exists, and the first patch's normal stands for all. Branch-free: vectorises.
+  float* __restrict normals = mesh.normals.data();
+  const float* __restrict first = firstNormal_.data();
+  for (std::size_t v = 0; v < boundaryCount_; ++v) {
+    float* nv = normals + 3 * v;
+    const float len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+    const bool cancelled = !(len > kCancelledNormal);
+    for (int comp = 0; comp < 3; ++comp)
+      nv[comp] = cancelled ? first[3 * v + comp] : nv[comp] / len;
+  }
+}
+
+}  // namespace
+
+Mesh tessellate(const VertexFrameSurface& surface, const TessellateOptions& options) {
+  Mesh mesh;
+  tessellate(surface, options, mesh);
+  return mesh;
+}
+
+void tessellate(const VertexFrameSurface& surface, const TessellateOptions& options, Mesh& mesh) {
+  TessellationEngine engine;
+  engine.layOut(*surface.topology, static_cast<std::uint32_t>(surface.patches.size()),
+                options.resolution);
+  engine.run(surface, mesh, true);
+}
+
+struct Tessellator::Cache {
+  TessellationEngine engine;
+  std::shared_ptr<const FrameTopology> topology;  ///< held, so its address is not reused
+  std::uint32_t resolution = 0;
+  std::size_t frames = 0;
+  bool valid = false;
+};
+
+Tessellator::Tessellator() : cache_(std::make_unique<Cache>()) {}
+Tessellator::~Tessellator() = default;
+Tessellator::Tessellator(Tessellator&&) noexcept = default;
+Tessellator& Tessellator::operator=(Tessellator&&) noexcept = default;
+
+const Mesh& Tessellator::tessellate(const VertexFrameSurface& surface,
+                                    const TessellateOptions& options) {
+  if (!cache_) cache_ = std::make_unique<Cache>();  // moved from
+  Cache& c = *cache_;
+  const bool same = c.valid && c.topology == surface.topology &&
+                    c.resolution == options.resolution && c.frames == surface.patches.size();
+  if (!same) {
+    c.valid = false;
+    c.topology.reset();
+    c.engine.layOut(*surface.topology, static_cast<std::uint32_t>(surface.patches.size()),
+                    options.resolution);
+    ++layoutVersion_;
+  }
+  c.engine.run(surface, mesh_, !same);
+  if (!same) {
+    c.topology = surface.topology;
+    c.resolution = options.resolution;
+    c.frames = surface.patches.size();
+    c.valid = true;
+  }
+  return mesh_;
 }
 
 }  // namespace pdesurf

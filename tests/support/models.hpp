@@ -147,4 +147,19 @@ inline VertexFrameModel mobiusModel(int segments) {
   return m;
 }
 
+/// Two frames over the same eight vertices, one mirrored, pushed apart by opposite forces:
+/// a closed pillow (both frames share both sides at every corner).
+inline VertexFrameModel pillowModel() {
+  VertexFrameModel m;
+  m.vertices = {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {1, 0.5, 0},
+                {1, 1, 0}, {0.5, 1, 0}, {0, 1, 0}, {0, 0.5, 0}};
+  Frame top, bottom;
+  top.vertices = {0, 1, 2, 3, 4, 5, 6, 7};
+  top.forces.push_back({Vec3(0, 0, 10), Region{}});
+  bottom.vertices = {0, 7, 6, 5, 4, 3, 2, 1};
+  bottom.forces.push_back({Vec3(0, 0, -10), Region{}});
+  m.frames = {top, bottom};
+  return m;
+}
+
 }  // namespace pdesurf::testing

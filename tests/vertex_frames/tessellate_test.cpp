@@ -133,15 +133,7 @@ TEST(Tessellate, BranchKeepsTheSharedEdgeAsOneRowOfVertices) {
 /// Two frames over the same eight vertices, one mirrored: a closed pillow. Both frames
 /// share both sides at every corner; no triangle may appear twice.
 TEST(Tessellate, PillowOfTwoFramesIsAClosedOrientedSphere) {
-  VertexFrameModel m;
-  m.vertices = {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {1, 0.5, 0},
-                {1, 1, 0}, {0.5, 1, 0}, {0, 1, 0}, {0, 0.5, 0}};
-  Frame top, bottom;
-  top.vertices = {0, 1, 2, 3, 4, 5, 6, 7};
-  top.forces.push_back({Vec3(0, 0, 10), Region{}});
-  bottom.vertices = {0, 7, 6, 5, 4, 3, 2, 1};
-  bottom.forces.push_back({Vec3(0, 0, -10), Region{}});
-  m.frames = {top, bottom};
+  const VertexFrameModel m = testing::pillowModel();
   for (std::uint32_t n : {3u, 4u, 7u, 16u}) {
     const Mesh mesh = tessellate(solve(m), {n});
     const auto stats = testing::edgeStats(mesh);

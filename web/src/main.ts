@@ -226,6 +226,7 @@ function applyState(s: ModelState, fit: boolean): void {
     return;
   }
   state.viewOnly = '';
+  $('frame-caption').textContent = 'Vertex frames';
   surfaceView.setOverlay($<HTMLInputElement>('overlay').checked);
   const changedTopology =
     !state.model ||
@@ -264,6 +265,7 @@ function applyViewOnly(s: ModelState, fit: boolean): void {
   if (fit || !exportName.value) exportName.value = s.path.replace(/\.json$/, '');
   const view = s.view ?? { curves: [], spines: [] };
   frameView.showCurves(view.curves, view.spines);
+  $('frame-caption').textContent = 'Curves and spine (view only)';
   surfaceView.setOverlay(false);
   renderPanel();
   renderStatus();
