@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 #include <numbers>
+#include <type_traits>
 
 namespace pdesurf::spectral {
 
@@ -120,7 +121,10 @@ Recurrence weightedRecurrence(double sigma, std::uint32_t count) {
   const int q = quadratureNodes(count);
   auto rule = rules.find(q);
   if (rule == rules.end()) rule = rules.emplace(q, GaussLegendre(q)).first;
-  return cache.emplace(key, computeRecurrence(sigma, count, rule->second)).first->second;
+  Recurrence r = computeRecurrence(sigma, count, rule->second);
+  r.alphaD.assign(r.alpha.begin(), r.alpha.end());
+  r.bD.assign(r.b.begin(), r.b.end());
+  return cache.emplace(key, std::move(r)).first->second;
 }
 
 ModeBasis::ModeBasis(std::vector<Root> roots) : roots_(std::move(roots)) {
@@ -136,14 +140,16 @@ namespace {
 constexpr std::uint32_t kMaxDerivatives = 130;  // orders up to 128 (N ≤ 64), plus 1
 
 /// Pascal's triangle C(j, i) for j < kMaxDerivatives, computed once.
-const std::vector<Real>& binomials() {
-  static const std::vector<Real> table = [] {
-    std::vector<Real> t(kMaxDerivatives * kMaxDerivatives, 0.0L);
+/// In the precision of the evaluation (T = double or Real).
+template <typename T>
+const std::vector<T>& binomials() {
+  static const std::vector<T> table = [] {
+    std::vector<T> t(kMaxDerivatives * kMaxDerivatives, T(0));
     for (std::uint32_t j = 0; j < kMaxDerivatives; ++j) {
-      t[j * kMaxDerivatives] = 1.0L;
+      t[j * kMaxDerivatives] = T(1);
       for (std::uint32_t i = 1; i <= j; ++i)
         t[j * kMaxDerivatives + i] = t[(j - 1) * kMaxDerivatives + i - 1] +
-                                     (i < j ? t[(j - 1) * kMaxDerivatives + i] : 0.0L);
+                                     (i < j ? t[(j - 1) * kMaxDerivatives + i] : T(0));
     }
     return t;
   }();
@@ -157,13 +163,24 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
   assert(maxDerivative < kMaxDerivatives);
   const std::uint32_t jCount = maxDerivative + 1;
   out.resize(jCount, size_);
-  const std::vector<Real>& binomTable = binomials();
+  const std::vector<T>& binomTable = binomials<T>();
   std::array<std::complex<T>, kMaxDerivatives> muPow;
   thread_local std::vector<T> poly;  // poly[i * m + k] = d^i/dt^i p_k(x(t))
   std::uint32_t col = 0;
   for (std::size_t g = 0; g < roots_.size(); ++g) {
     const Root& r = roots_[g];
     const Recurrence& rec = recurrences_[g];
+    const std::vector<T>* alphaT;
+    const std::vector<T>* bT;
+    if constexpr (std::is_same_v<T, double>) {
+      alphaT = &rec.alphaD;
+      bT = &rec.bD;
+    } else {
+      alphaT = &rec.alpha;
+      bT = &rec.b;
+    }
+    const std::vector<T>& alpha = *alphaT;
+    const std::vector<T>& bCoef = *bT;
     const std::uint32_t m = r.multiplicity;
     const bool growing = r.mu.real() > 0.0;
     const bool complexPair = r.mu.imag() != 0.0;
@@ -172,14 +189,14 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
     const std::uint32_t iCount = std::min(jCount, m);
     const T x = growing ? T(1) - static_cast<T>(t) : static_cast<T>(t);
     poly.resize(static_cast<std::size_t>(iCount) * m);
-    poly[0] = T(1) / static_cast<T>(rec.b[0]);
+    poly[0] = T(1) / bCoef[0];
     for (std::uint32_t i = 1; i < iCount; ++i) poly[i * m] = T(0);  // p_0 is constant
     for (std::uint32_t k = 0; k + 1 < m; ++k)
       for (std::uint32_t i = 0; i < iCount; ++i) {
-        T v = (x - static_cast<T>(rec.alpha[k])) * poly[i * m + k];
+        T v = (x - alpha[k]) * poly[i * m + k];
         if (i > 0) v += static_cast<T>(i) * poly[(i - 1) * m + k];
-        if (k > 0) v -= static_cast<T>(rec.b[k]) * poly[i * m + k - 1];
-        poly[i * m + k + 1] = v / static_cast<T>(rec.b[k + 1]);
+        if (k > 0) v -= bCoef[k] * poly[i * m + k - 1];
+        poly[i * m + k + 1] = v / bCoef[k + 1];
       }
     if (growing)  // dx/dt = -1
       for (std::uint32_t i = 1; i < iCount; i += 2)
@@ -198,8 +215,7 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
           T sum = T(0);
           const std::uint32_t top = std::min(std::min(j, k), iCount - 1);
           for (std::uint32_t i = 0; i <= top; ++i)
-            sum +=
-                static_cast<T>(binomTable[j * kMaxDerivatives + i]) * poly[i * m + k] * pw[j - i];
+            sum += binomTable[j * kMaxDerivatives + i] * poly[i * m + k] * pw[j - i];
           out(j, col + k) = static_cast<T>(sum);
         }
       col += m;
@@ -213,8 +229,7 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
         std::complex<T> sum = T(0);
         const std::uint32_t top = std::min(std::min(j, k), iCount - 1);
         for (std::uint32_t i = 0; i <= top; ++i)
-          sum +=
-              static_cast<T>(binomTable[j * kMaxDerivatives + i]) * poly[i * m + k] * muPow[j - i];
+          sum += binomTable[j * kMaxDerivatives + i] * poly[i * m + k] * muPow[j - i];
         out(j, col + k) = static_cast<T>(sum.real());
         out(j, col + m + k) = static_cast<T>(sum.imag());
       }

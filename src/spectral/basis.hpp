@@ -51,6 +51,8 @@ std::vector<Root> modeRoots(const SpectralOperator& op, std::uint32_t n, double 
 /// b_{k+1} p_{k+1} = (x - α_k) p_k - b_k p_{k-1}, p_0 = 1 / b_0 (discretised Stieltjes).
 struct Recurrence {
   std::vector<Real> alpha, b;  ///< b[0] = sqrt(∫ w)
+  /// The same in double, for the double evaluation path (no long-double loads per point).
+  std::vector<double> alphaD, bD;
 };
 Recurrence weightedRecurrence(double sigma, std::uint32_t count);
 
