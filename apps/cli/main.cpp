@@ -82,6 +82,16 @@ std::string count(std::size_t n, const std::string& noun) {
   return fmt::format("{} {}{}", n, noun, noun.ends_with("ch") ? "es" : "s");
 }
 
+/// An output path pdesurf cannot write (by its extension) is a usage error, found before
+/// any work.
+void checkMeshExtension(const std::string& outPath) {
+  try {
+    meshFormatFromPath(outPath);
+  } catch (const MeshIoError& e) {
+    throw UsageError(e.what());
+  }
+}
+
 /// A model of any type solved and tessellated: what `build` writes and `compare` measures.
 struct BuiltModel {
   std::string name;
@@ -144,11 +154,7 @@ BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
 
 int runBuild(const std::string& modelPath, const std::string& outPath, std::uint32_t resolution,
              const SolveArgs& args, bool quiet) {
-  try {
-    meshFormatFromPath(outPath);  // an unknown extension fails before any work
-  } catch (const MeshIoError& e) {
-    throw UsageError(e.what());
-  }
+  checkMeshExtension(outPath);
   const BuiltModel built = buildModel(modelPath, resolution, args);
   const Mesh& mesh = built.mesh;
   auto t0 = Clock::now();
@@ -478,11 +484,7 @@ struct CoonsCommand {
   int run() const {
     if (bilinear + own + !tangents.empty() > 1)
       throw UsageError("coons: choose one of --bilinear, --tangents and --own-tangents");
-    try {
-      meshFormatFromPath(outPath);
-    } catch (const MeshIoError& e) {
-      throw UsageError(e.what());
-    }
+    checkMeshExtension(outPath);
     AnyModel any = loadModel(modelPath);
     const auto* model = std::get_if<VertexFrameModel>(&any);
     if (!model) throw UsageError(fmt::format("{}: coons takes a vertex-frames model", modelPath));

@@ -15,13 +15,8 @@
 namespace pdesurf {
 
 namespace {
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-std::string str(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", x);
-  return buf;
-}
+using spectral::kTwoPi;
+using spectral::numberText;
 
 /// Drops a closing duplicate point (the first point written again at the end).
 std::vector<Vec3> openPoints(const SampledCurve& curve) {
@@ -61,11 +56,12 @@ std::vector<double> curveParameters(const SampledCurve& curve, VParameterization
     for (std::size_t j = 0; j < curve.v.size(); ++j) {
       const double v = curve.v[j];
       if (!std::isfinite(v) || v < 0.0 || v >= kTwoPi)
-        throw std::invalid_argument("v[" + std::to_string(j) + "] = " + str(v) +
+        throw std::invalid_argument("v[" + std::to_string(j) + "] = " + numberText(v) +
                                     " is outside [0, 2π)");
       if (j > 0 && !(v > curve.v[j - 1]))
         throw std::invalid_argument("v values must increase strictly: v[" + std::to_string(j) +
-                                    "] = " + str(v) + " after " + str(curve.v[j - 1]));
+                                    "] = " + numberText(v) + " after " +
+                                    numberText(curve.v[j - 1]));
     }
     return curve.v;
   }
@@ -198,20 +194,7 @@ Vec3 PeriodicSpline::evaluate(double v, std::uint32_t k) const {
   const double x0 = v_[j], x1 = j + 1 < n ? v_[j + 1] : v_[0] + kTwoPi;
   const double h = x1 - x0, a = x1 - x, b = x - x0;
   const Vec3 &y0 = y_[j], &y1 = y_[j1], &m0 = m_[j], &m1 = m_[j1];
-  switch (k) {
-    case 0:
-      return m0 * a * a * a / (6 * h) + m1 * b * b * b / (6 * h) + (y0 / h - m0 * h / 6) * a +
-             (y1 / h - m1 * h / 6) * b;
-    case 1:
-      return -m0 * a * a / (2 * h) + m1 * b * b / (2 * h) - (y0 / h - m0 * h / 6) +
-             (y1 / h - m1 * h / 6);
-    case 2:
-      return m0 * a / h + m1 * b / h;
-    case 3:
-      return (m1 - m0) / h;
-    default:
-      return Vec3::Zero();
-  }
+  return spectral::cubicSegment(y0, y1, m0, m1, h, a, b, k);
 }
 
 SpineOffset naturalSpline(std::vector<double> u, std::vector<Vec3> y) {
@@ -269,20 +252,7 @@ Vec3 evaluateNaturalSpline(const SpineOffset& s, double u, std::uint32_t k) {
                   1;
   const double x0 = s.knots[j], x1 = s.knots[j + 1], h = x1 - x0, a = x1 - u, b = u - x0;
   const Vec3 &y0 = s.values[j], &y1 = s.values[j + 1], &m0 = s.second[j], &m1 = s.second[j + 1];
-  switch (k) {
-    case 0:
-      return m0 * a * a * a / (6 * h) + m1 * b * b * b / (6 * h) + (y0 / h - m0 * h / 6) * a +
-             (y1 / h - m1 * h / 6) * b;
-    case 1:
-      return -m0 * a * a / (2 * h) + m1 * b * b / (2 * h) - (y0 / h - m0 * h / 6) +
-             (y1 / h - m1 * h / 6);
-    case 2:
-      return m0 * a / h + m1 * b / h;
-    case 3:
-      return (m1 - m0) / h;
-    default:
-      return Vec3::Zero();
-  }
+  return spectral::cubicSegment(y0, y1, m0, m1, h, a, b, k);
 }
 
 ConditionData resolveCurve(const CurveInput& curve, std::uint32_t modes,

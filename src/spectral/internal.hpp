@@ -1,7 +1,9 @@
 // Private pieces of the spectral engine shared by its source files.
 #pragma once
 
+#include <cstdio>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,36 @@
 #include "spectral/basis.hpp"
 
 namespace pdesurf::spectral {
+
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// A number for an error message (nine significant digits).
+inline std::string numberText(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+/// The k-th derivative (k ≤ 3) of one cubic spline segment from its end values y0, y1 and
+/// second derivatives m0, m1, at distances a = x1 − x and b = x − x0 in a segment of length
+/// h (the natural and the periodic splines share it).
+inline Vec3 cubicSegment(const Vec3& y0, const Vec3& y1, const Vec3& m0, const Vec3& m1, double h,
+                         double a, double b, std::uint32_t k) {
+  switch (k) {
+    case 0:
+      return m0 * a * a * a / (6 * h) + m1 * b * b * b / (6 * h) + (y0 / h - m0 * h / 6) * a +
+             (y1 / h - m1 * h / 6) * b;
+    case 1:
+      return -m0 * a * a / (2 * h) + m1 * b * b / (2 * h) - (y0 / h - m0 * h / 6) +
+             (y1 / h - m1 * h / 6);
+    case 2:
+      return m0 * a / h + m1 * b / h;
+    case 3:
+      return (m1 - m0) / h;
+    default:
+      return Vec3::Zero();
+  }
+}
 
 /// A periodic (period 2π) interpolating cubic spline through (v_j, y_j), C2.
 class PeriodicSpline {

@@ -14,13 +14,8 @@
 namespace pdesurf {
 
 namespace {
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-std::string str(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", x);
-  return buf;
-}
+using spectral::kTwoPi;
+using spectral::numberText;
 
 /// cos/sin(nv) differentiated kv times: n^kv cos(nv + kv π/2), n^kv sin(nv + kv π/2).
 void trig(std::uint32_t n, double v, std::uint32_t kv, double& c, double& s) {
@@ -149,7 +144,8 @@ void SpectralOperator::validate() const {
     if (power > 64)
       throw std::invalid_argument("Ugail operator: N = " + std::to_string(power) +
                                   " exceeds 64 (order 128)");
-    if (a <= 0.0) throw std::invalid_argument("Ugail operator needs a > 0, got a = " + str(a));
+    if (a <= 0.0)
+      throw std::invalid_argument("Ugail operator needs a > 0, got a = " + numberText(a));
   } else {
     if (a == 0.0)
       throw std::invalid_argument("Fu operator needs a != 0 (a = 0 leaves ∂⁶X/∂u⁶ = 0 alone)");
@@ -420,10 +416,10 @@ SpectralPatch solveSpectral(const SpectralOperator& op,
         throw std::invalid_argument("conditions " + std::to_string(j) + " and " +
                                     std::to_string(i) + " both fix derivative " +
                                     std::to_string(conditions[i].derivative) +
-                                    " at u = " + str(u[i]));
+                                    " at u = " + numberText(u[i]));
   const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
   if (!(*hi > *lo))
-    throw std::invalid_argument("all conditions sit at u = " + str(*lo) +
+    throw std::invalid_argument("all conditions sit at u = " + numberText(*lo) +
                                 ": the patch has no extent");
   std::vector<spectral::ConditionData> data;
   for (std::size_t i = 0; i < conditions.size(); ++i) {

@@ -20,6 +20,7 @@
 
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
+#include "support/cli_run.hpp"
 
 namespace pdesurf {
 namespace {
@@ -27,58 +28,15 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-/// A fresh directory, removed with everything in it at the end of the test.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "pdesurf-cli-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
-  /// The names of the entries in the directory, sorted.
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(path_))
-      names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
- private:
-  fs::path path_;
-};
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
+using testing::CliRun;
+using testing::readText;
+using testing::TempDir;
 
 void writeText(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
-/// A shell word: the text in single quotes.
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+std::string quote(const std::string& s) { return testing::shellQuote(s); }
 
 // ---------------------------------------------------------------------------------------
 // Models, written as JSON text.
@@ -167,17 +125,7 @@ std::string modelJson(const VertexFrameModel& m) {
 class CliFixture : public ::testing::Test {
  protected:
   /// Runs `pdesurf ARGS` (ARGS already shell words) from the work directory.
-  CliRun run(const std::string& args) {
-    const std::string out = capture_.file("stdout"), err = capture_.file("stderr");
-    const std::string command = "cd " + quote(work_.file("")) + " && " + quote(PDESURF_CLI) + " " +
-                                args + " >" + quote(out) + " 2>" + quote(err);
-    const int status = std::system(command.c_str());
-    CliRun r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = readText(out);
-    r.err = readText(err);
-    return r;
-  }
+  CliRun run(const std::string& args) { return testing::runCli(work_, capture_, args); }
   /// Writes `text` to the work directory; returns its full path.
   std::string put(const std::string& name, const std::string& text) {
     writeText(work_.file(name), text);
