@@ -630,12 +630,19 @@ class StudioServer::Impl {
                   const SolveOptions options = solveOptions(req);
                   double solveMs = 0, tessMs = 0, gap = 0;
                   const Mesh& mesh = meshOf(resolution, options, solveMs, tessMs, gap);
-                  const bool delta = base != 0 && base == sentId_ && sameTopology(sent_, mesh);
+                  // Same triangles: for vertex frames the Tessellator's layout says so
+                  // without comparing the index buffers (the drag's hot path).
+                  const std::uint64_t layout = view_ ? 0 : tessellator_.layoutVersion();
+                  const bool sameTriangles =
+                      view_ ? sameTopology(sent_, mesh) : layout == sentLayout_ && !sentView_;
+                  const bool delta = base != 0 && base == sentId_ && sameTriangles;
                   if (delta)
                     sendMeshDelta(res, sent_, mesh, revision(), resolution);
                   else
                     sendMesh(res, mesh, revision(), resolution);
                   sent_ = mesh;  // what the client now has (copies reuse sent_'s buffers)
+                  sentLayout_ = layout;
+                  sentView_ = view_.has_value();
                   sentId_ = ++meshCounter_;
                   if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
                   res.set_header("X-Mesh-Id", std::to_string(sentId_));
@@ -848,9 +855,11 @@ class StudioServer::Impl {
   bool recovery_ = false;
   // The last mesh sent (GET /api/mesh) and its id; ids are never reused while the server
   // runs, so a client's `base` names exactly one mesh, across opened models too.
-  Tessellator tessellator_;  // the page's vertex-frame meshes
-  Mesh viewMesh_;            // the page's mesh of a view-only model
-  Mesh sent_;                // the last mesh sent (the base of a delta)
+  Tessellator tessellator_;       // the page's vertex-frame meshes
+  Mesh viewMesh_;                 // the page's mesh of a view-only model
+  Mesh sent_;                     // the last mesh sent (the base of a delta)
+  std::uint64_t sentLayout_ = 0;  // the Tessellator layout of sent_ (vertex frames)
+  bool sentView_ = false;         // sent_ is a view-only model's mesh
   struct View {
     std::string text;  ///< the file as read
     Json json;

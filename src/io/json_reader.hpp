@@ -334,4 +334,8 @@ class Reader {
   std::string source_;
 };
 
+/// A parsed document as a vertex-frames model (parseVertexFrameModel after the JSON syntax;
+/// the dispatch on "type" in parseModel calls it on the document it already parsed).
+VertexFrameModel parseVertexFrameDocument(const Json& doc, const Reader& rd);
+
 }  // namespace pdesurf::detail

@@ -29,8 +29,11 @@ using detail::sideName;
 using detail::typeName;
 
 VertexFrameModel parseVertexFrameModel(std::string_view text, const std::string& source) {
-  Reader rd(source);
-  const Json doc = rd.parseDocument(text);
+  const Reader rd(source);
+  return detail::parseVertexFrameDocument(rd.parseDocument(text), rd);
+}
+
+VertexFrameModel detail::parseVertexFrameDocument(const Json& doc, const Reader& rd) {
   rd.expectObject(doc, "$");
   const Json& type = rd.member(doc, "$", "type");
   if (!type.is_string())

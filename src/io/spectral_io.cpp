@@ -298,7 +298,7 @@ AnyModel parseModel(std::string_view text, const std::string& source) {
   const Json doc = rd.parseDocument(text);
   rd.expectObject(doc, "$");
   const std::string type = rd.string(rd.member(doc, "$", "type"), "$.type");
-  if (type == "vertex-frames") return parseVertexFrameModel(text, source);
+  if (type == "vertex-frames") return detail::parseVertexFrameDocument(doc, rd);
   if (type == "spectral") return parseSpectral(doc, rd);
   if (type == "cross-sections") return parseCrossSections(doc, rd);
   rd.fail("$.type",
