@@ -13,6 +13,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bspline_commands.hpp"
+#include "export_command.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/coons.hpp"
 #include "pdesurf/mesh_distance.hpp"
@@ -120,11 +122,23 @@ BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
     built.quality = fmt::format("C0 gap {:.3g}", measureC0Gap(surface).maxGap);
     return built;
   }
+  if (const auto* model = std::get_if<BSplinePdeModel>(&any)) {
+    built.name = modelName(model->name, modelPath);
+    auto t0 = Clock::now();
+    const SolvedBSplinePde solved = solveBSplineModel(*model, modelPath);
+    built.solveMs = msSince(t0);
+    t0 = Clock::now();
+    built.mesh = tessellate(solved, resolution);
+    built.tessMs = msSince(t0);
+    built.summary = cli::bsplineSummary(solved);
+    built.quality = cli::bsplineQuality(solved);
+    return built;
+  }
   auto t0 = Clock::now();
   const SolvedSpectral solved = std::visit(
       [&](const auto& m) -> SolvedSpectral {
         using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, VertexFrameModel>)
+        if constexpr (std::is_same_v<T, VertexFrameModel> || std::is_same_v<T, BSplinePdeModel>)
           throw std::logic_error("unreachable");
         else {
           built.name = modelName(m.name, modelPath);
@@ -192,6 +206,10 @@ int runSample(const std::string& modelPath, std::uint32_t grid, const SolveArgs&
     std::cout << cli::sampleJson(*solved, grid);
     return 0;
   }
+  if (const auto* m = std::get_if<BSplinePdeModel>(&any)) {
+    std::cout << cli::bsplineSampleJson(solveBSplineModel(*m, modelPath), grid);
+    return 0;
+  }
   const VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
   const VertexFrameSurface surface = solve(model, args.options(model));
   printNotes(surface, modelPath);
@@ -217,6 +235,10 @@ int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
   std::string name;
   if (auto solved = solveIfSpectral(any, modelPath, name)) {
     std::cout << cli::infoText(*solved, modelPath, name, json);
+    return 0;
+  }
+  if (const auto* m = std::get_if<BSplinePdeModel>(&any)) {
+    std::cout << cli::bsplineInfoText(*m, solveBSplineModel(*m, modelPath), modelPath, json);
     return 0;
   }
   const VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
@@ -605,6 +627,8 @@ int main(int argc, char** argv) {
   CLI::App* slice = sliceCommand.add(app);
   CompareCommand compareCommand;
   CLI::App* compare = compareCommand.add(app);
+  cli::ExportCommand exportCommand;
+  CLI::App* exportCmd = exportCommand.add(app);
 
   try {
     app.parse(argc, argv);
@@ -635,13 +659,13 @@ int main(int argc, char** argv) {
       auto solved = solveIfSpectral(any, modelPath, name);
       if (!solved)
         throw UsageError(fmt::format(
-            "{}: a vertex-frames model has no spine (spine takes spectral and cross-sections "
-            "models)",
-            modelPath));
+            "{}: only spectral and cross-sections models have a spine (this is a {} model)",
+            modelPath, modelTypeName(any)));
       std::cout << cli::spineJson(*solved, spineCount);
       return 0;
     }
     if (*compare) return compareCommand.run();
+    if (*exportCmd) return exportCommand.run();
     return runInfo(modelPath, json, solveArgs);
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

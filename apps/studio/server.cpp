@@ -149,7 +149,7 @@ constexpr const char* kIndexPage = R"(<!doctype html>
 <p>The studio's web front-end is not built here (<code>make build</code> builds web/dist; <code>PDESURF_WEB_DIR</code> names another folder). The server's JSON API:</p>
 <ul>
 <li>GET /api/model: the model, its path, revision, undo and redo depths, dirty, recovery</li>
-<li>POST /api/edit (an edit), /api/end-group, /api/undo, /api/redo</li>
+<li>POST /api/edit (an edit), /api/transform (move, turn, scale the model), /api/end-group, /api/undo, /api/redo</li>
 <li>GET /api/mesh?resolution=N&amp;solver=global|local&amp;seed=K: the surface as binary buffers</li>
 <li>GET /api/files; POST /api/open, /api/save, /api/save-as, /api/export {"path": ...}</li>
 <li>POST /api/recover, /api/discard-recovery: the autosave journal</li>
@@ -182,7 +182,7 @@ class Journal {
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;
 
-  void write(fs::path path, VertexFrameModel model) {
+  void write(fs::path path, AnyModel model) {
     {
       std::lock_guard lock(mutex_);
       pending_.emplace(Job{std::move(path), std::move(model)});
@@ -207,7 +207,7 @@ class Journal {
  private:
   struct Job {
     fs::path path;
-    VertexFrameModel model;
+    AnyModel model;
   };
 
   void run() {
@@ -220,7 +220,7 @@ class Journal {
       busy_ = true;
       lock.unlock();
       try {
-        writeFileAtomically(job.path, serializeVertexFrameModel(job.model));
+        writeFileAtomically(job.path, serializeModel(job.model));
       } catch (const std::exception& e) {
         std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
       }
@@ -329,29 +329,44 @@ class StudioServer::Impl {
   // ------------------------------------------------------------------------------------
   // The session
 
-  std::uint64_t revision() const { return session_ ? base_ + session_->revision() : base_; }
+  std::uint64_t revision() const {
+    return base_ + (session_ ? session_->revision() : spectral_ ? spectral_->revision() : 0);
+  }
 
   Json status() const {
     return {{"revision", revision()},
-            {"undo", session_ ? session_->undoDepth() : 0},
-            {"redo", session_ ? session_->redoDepth() : 0},
+            {"undo", session_ ? session_->undoDepth() : spectral_->undoDepth()},
+            {"redo", session_ ? session_->redoDepth() : spectral_->redoDepth()},
             {"dirty", revision() != savedRevision_}};
   }
 
-  /// The routes that change a model need a vertex-frame session; spectral and
-  /// cross-section models are shown, exported and copied, not edited (yet).
+  /// Edits other than whole-model transforms need a vertex-frame session; spectral and
+  /// cross-section models are shown, moved, turned, scaled, exported and saved, but their
+  /// curves are not edited (yet).
   void requireEditable() const {
     if (!session_)
       fail(409, fmt::format("{} models are view-only in the studio: edit the file, then open it "
-                            "again",
-                            view_->solved.type));
+                            "again (whole-model transforms work: POST /api/transform)",
+                            spectral_->solved().type));
   }
 
-  /// Replaces the session with `model`; the revision keeps increasing across sessions.
-  void replaceSession(VertexFrameModel model) {
+  /// The open model, whatever its type (a copy: for the journal).
+  AnyModel currentModel() const {
+    return session_ ? AnyModel(session_->model()) : spectral_->model();
+  }
+
+  /// Replaces the session with `model` (solving a spectral one first: it throws
+  /// ModelError before anything changes); the revision keeps increasing across sessions.
+  void replaceSession(AnyModel model, const std::string& source) {
     const std::uint64_t next = opened_ ? revision() + 1 : 0;
-    session_ = std::make_unique<ModelSession>(std::move(model));
-    view_.reset();
+    if (auto* frames = std::get_if<VertexFrameModel>(&model)) {
+      session_ = std::make_unique<ModelSession>(std::move(*frames));
+      spectral_.reset();
+    } else {
+      auto spectral = std::make_unique<SpectralSession>(std::move(model), source);
+      session_.reset();
+      spectral_ = std::move(spectral);
+    }
     base_ = next;
     opened_ = true;
   }
@@ -360,48 +375,32 @@ class StudioServer::Impl {
   void openModel(const fs::path& path, const std::string& source) {
     journal_.cancel();  // the journal read below must not change underneath
     const std::string fileText = readFile(path);
-    AnyModel any = parseModel(fileText, source);
-    if (!std::holds_alternative<VertexFrameModel>(any)) {
-      openView(path, source, fileText, any);
-      return;
-    }
-    VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
-    const std::string text = serializeVertexFrameModel(model);
-    replaceSession(std::move(model));
+    replaceSession(parseModel(fileText, source), source);  // a type it cannot open throws
+    const std::string text = serializeModel(currentModel());
     path_ = path;
+    fileText_ = fileText;
+    fileModel_ = text;
     savedRevision_ = revision();
     // An autosave that differs from the file holds edits a crash left unsaved.
     recovery_ = false;
     std::error_code ec;
     if (fs::exists(autosavePath(path_), ec)) {
       try {
-        const VertexFrameModel saved = parseVertexFrameModel(
-            readFile(autosavePath(path_)), autosavePath(path_).filename().string());
-        recovery_ = serializeVertexFrameModel(saved) != text;
+        const AnyModel saved =
+            parseModel(readFile(autosavePath(path_)), autosavePath(path_).filename().string());
+        recovery_ = serializeModel(saved) != text;
       } catch (const std::exception&) {
         recovery_ = false;  // an unreadable journal is no recovery
       }
     }
   }
 
-  /// A spectral or cross-section model: solved once, shown, not edited.
-  void openView(const fs::path& path, const std::string& source, const std::string& fileText,
-                const AnyModel& any) {
-    View view;
-    view.text = fileText;
-    view.json = Json::parse(fileText);
-    if (const auto* m = std::get_if<SpectralModel>(&any))
-      view.solved = solveSpectralModel(*m, source);
-    else
-      view.solved = solveSpectralModel(std::get<CrossSectionModel>(any), source);
-    const std::uint64_t next = opened_ ? revision() + 1 : 0;
-    session_.reset();
-    view_ = std::move(view);
-    base_ = next;
-    opened_ = true;
-    path_ = path;
-    savedRevision_ = revision();
-    recovery_ = false;
+  /// The current spectral model as its file says when it is the model read or saved last
+  /// (so an untransformed model is shown, saved and copied exactly as written), else as
+  /// serializeModel writes it.
+  std::string spectralText() const {
+    std::string text = serializeModel(spectral_->model());
+    return text == fileModel_ ? fileText_ : text;
   }
 
   /// What the frame view draws for a view-only model: each patch's position curves and its
@@ -409,7 +408,26 @@ class StudioServer::Impl {
   Json viewCurves() const {
     constexpr std::uint32_t kViewCurveSamples = 96, kViewSpineSamples = 65;
     Json curves = Json::array(), spines = Json::array();
-    const SolvedSpectral& s = view_->solved;
+    if (const SolvedBSplinePde* b = spectral_->bspline()) {
+      // A B-spline model: the control polygon of each piece, its rows and its columns.
+      for (const BSplineSurface& piece : b->pieces) {
+        const ControlNet& net = piece.net();
+        for (int direction = 0; direction < 2; ++direction) {
+          const std::uint32_t lines = direction == 0 ? net.nu : net.nv;
+          const std::uint32_t along = direction == 0 ? net.nv : net.nu;
+          for (std::uint32_t a = 0; a <= lines; ++a) {
+            Json line = Json::array();
+            for (std::uint32_t k = 0; k <= along; ++k) {
+              const Vec3& q = direction == 0 ? net(a, k) : net(k, a);
+              line.push_back({q.x(), q.y(), q.z()});
+            }
+            curves.push_back(std::move(line));
+          }
+        }
+      }
+      return {{"curves", std::move(curves)}, {"spines", std::move(spines)}};
+    }
+    const SolvedSpectral& s = spectral_->solved();
     for (std::size_t k = 0; k < s.patchCount(); ++k) {
       const SpectralPatch& p = s.patchAt(k);
       const auto [u0, u1] = s.range(k);
@@ -437,14 +455,15 @@ class StudioServer::Impl {
   /// Tessellator (a drag keeps the topology, so only positions and normals are rewritten).
   const Mesh& meshOf(std::uint32_t resolution, const SolveOptions& options, double& solveMs,
                      double& tessMs, double& gap) {
-    if (view_) {
+    if (spectral_) {
       auto t0 = Clock::now();
-      viewMesh_ = tessellate(view_->solved, resolution);
+      viewMesh_ = spectralMesh(resolution);
       tessMs = msSince(t0);
-      solveMs = 0.0;  // solved when opened
+      solveMs = 0.0;  // solved when opened or transformed
       gap = 0.0;
-      if (view_->solved.chain)
-        for (const JointGap& g : measureJointGaps(*view_->solved.chain)) gap = std::max(gap, g.c0);
+      if (spectral_->solved().chain)
+        for (const JointGap& g : measureJointGaps(*spectral_->solved().chain))
+          gap = std::max(gap, g.c0);
       return viewMesh_;
     }
     auto t0 = Clock::now();
@@ -457,24 +476,32 @@ class StudioServer::Impl {
     return mesh;
   }
 
+  /// The mesh of the open spectral, cross-section or bspline-pde model.
+  Mesh spectralMesh(std::uint32_t resolution) const {
+    if (const SolvedBSplinePde* b = spectral_->bspline()) return tessellate(*b, resolution);
+    return tessellate(spectral_->solved(), resolution);
+  }
+
   /// A mesh for a file (export), leaving the page's tessellation cache alone.
   Mesh exportMesh(std::uint32_t resolution) {
-    return view_ ? tessellate(view_->solved, resolution)
-                 : tessellate(session_->surface(), {resolution});
+    return spectral_ ? spectralMesh(resolution) : tessellate(session_->surface(), {resolution});
   }
 
   /// The journal: the current model beside its file after every change. A pending
   /// recovery is never overwritten (recover or discard it first).
   void autosave() {
-    if (recovery_ || !session_) return;
-    journal_.write(autosavePath(path_), session_->model());
+    if (recovery_) return;
+    journal_.write(autosavePath(path_), currentModel());
   }
 
   void saveTo(const fs::path& path) {
     try {
-      // A view-only model is saved as its file was (save as: a copy).
-      writeFileAtomically(path,
-                          session_ ? serializeVertexFrameModel(session_->model()) : view_->text);
+      // An untransformed spectral model is saved as its file was (save as: a copy).
+      const std::string text =
+          session_ ? serializeVertexFrameModel(session_->model()) : spectralText();
+      writeFileAtomically(path, text);
+      fileText_ = text;
+      fileModel_ = session_ ? text : serializeModel(spectral_->model());
     } catch (const std::exception& e) {
       fail(500, e.what());
     }
@@ -581,7 +608,7 @@ class StudioServer::Impl {
                   if (session_) {
                     out["model"] = Json::parse(serializeVertexFrameModel(session_->model()));
                   } else {
-                    out["model"] = view_->json;
+                    out["model"] = Json::parse(spectralText());
                     out["view"] = viewCurves();
                   }
                   sendJson(res, out);
@@ -595,6 +622,20 @@ class StudioServer::Impl {
                    sendJson(res, status());
                  }));
 
+    // Moves, turns or scales the whole model, of any type: one undo step.
+    server_.Post("/api/transform",
+                 guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   const AffineMap map = parseTransform(req.body);
+                   if (session_) {
+                     checkTransform(session_->model(), map);
+                     session_->apply(TransformModel{map});
+                   } else {
+                     spectral_->transform(map);
+                   }
+                   autosave();
+                   sendJson(res, status());
+                 }));
+
     server_.Post("/api/end-group", guarded([this](const httplib::Request&, httplib::Response& res) {
                    requireEditable();
                    session_->endGroup();
@@ -602,15 +643,15 @@ class StudioServer::Impl {
                  }));
 
     server_.Post("/api/undo", guarded([this](const httplib::Request&, httplib::Response& res) {
-                   requireEditable();
-                   if (!session_->undo()) fail(409, "nothing to undo");
+                   if (!(session_ ? session_->undo() : spectral_->undo()))
+                     fail(409, "nothing to undo");
                    autosave();
                    sendJson(res, status());
                  }));
 
     server_.Post("/api/redo", guarded([this](const httplib::Request&, httplib::Response& res) {
-                   requireEditable();
-                   if (!session_->redo()) fail(409, "nothing to redo");
+                   if (!(session_ ? session_->redo() : spectral_->redo()))
+                     fail(409, "nothing to redo");
                    autosave();
                    sendJson(res, status());
                  }));
@@ -632,9 +673,9 @@ class StudioServer::Impl {
                   const Mesh& mesh = meshOf(resolution, options, solveMs, tessMs, gap);
                   // Same triangles: for vertex frames the Tessellator's layout says so
                   // without comparing the index buffers (the drag's hot path).
-                  const std::uint64_t layout = view_ ? 0 : tessellator_.layoutVersion();
+                  const std::uint64_t layout = spectral_ ? 0 : tessellator_.layoutVersion();
                   const bool sameTriangles =
-                      view_ ? sameTopology(sent_, mesh) : layout == sentLayout_ && !sentView_;
+                      spectral_ ? sameTopology(sent_, mesh) : layout == sentLayout_ && !sentView_;
                   const bool delta = base != 0 && base == sentId_ && sameTriangles;
                   if (delta)
                     sendMeshDelta(res, sent_, mesh, revision(), resolution);
@@ -642,7 +683,7 @@ class StudioServer::Impl {
                     sendMesh(res, mesh, revision(), resolution);
                   sent_ = mesh;  // what the client now has (copies reuse sent_'s buffers)
                   sentLayout_ = layout;
-                  sentView_ = view_.has_value();
+                  sentView_ = spectral_ != nullptr;
                   sentId_ = ++meshCounter_;
                   if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
                   res.set_header("X-Mesh-Id", std::to_string(sentId_));
@@ -738,9 +779,8 @@ class StudioServer::Impl {
     server_.Post("/api/recover", guarded([this](const httplib::Request&, httplib::Response& res) {
                    if (!recovery_) fail(409, "no autosave to recover");
                    const fs::path journal = autosavePath(path_);
-                   VertexFrameModel model =
-                       parseVertexFrameModel(readFile(journal), relative(journal));
-                   replaceSession(std::move(model));
+                   replaceSession(parseModel(readFile(journal), relative(journal)),
+                                  relative(journal));
                    recovery_ = false;  // the journal now matches the session
                    sendJson(res, status());
                  }));
@@ -860,12 +900,10 @@ class StudioServer::Impl {
   Mesh sent_;                     // the last mesh sent (the base of a delta)
   std::uint64_t sentLayout_ = 0;  // the Tessellator layout of sent_ (vertex frames)
   bool sentView_ = false;         // sent_ is a view-only model's mesh
-  struct View {
-    std::string text;  ///< the file as read
-    Json json;
-    SolvedSpectral solved;
-  };
-  std::optional<View> view_;  ///< set when a view-only model is open (session_ is null)
+  /// Set when a spectral or cross-section model is open (then session_ is null).
+  std::unique_ptr<SpectralSession> spectral_;
+  std::string fileText_;   ///< the model's file as read or saved last
+  std::string fileModel_;  ///< serializeModel of that file's model
   bool opened_ = false;
   Journal journal_;
   std::uint64_t sentId_ = 0;

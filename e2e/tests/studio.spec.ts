@@ -269,3 +269,102 @@ test.describe('a spectral model', () => {
     expect(existsSync(path.join(studio.root, 'shell.obj'))).toBe(true);
   });
 });
+
+test.describe('transforming a spectral model', () => {
+  test.use({ example: 'shell.json' });
+  test('Move shifts the surface; the page mesh is the server mesh; undo puts it back', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    const box = () => page.evaluate(() => (window as any).__studio.meshBox());
+    const before = await box();
+    await page.getByTestId('move-x').fill('1');
+    await page.getByTestId('move-y').fill('0');
+    await page.getByTestId('move-z').fill('-0.5');
+    await page.getByTestId('move-apply').click();
+    await expect(page.getByTestId('status')).toContainText('moved the model');
+    await meshUpToDate(page);
+    expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
+    const after = await box();
+    const shift = [1, 0, -0.5];
+    for (let c = 0; c < 3; ++c) {
+      expect(after.min[c]).toBeCloseTo(before.min[c] + shift[c], 4);
+      expect(after.max[c]).toBeCloseTo(before.max[c] + shift[c], 4);
+    }
+    const s = await studio.state();
+    expect(s.editable).toBe(false);
+    expect(s.undo).toBe(1);
+    expect(s.dirty).toBe(true);
+    expect(s.model.type).toBe('spectral');
+    await expect(page.getByTestId('error')).toHaveText('');
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: shot('shell-moved.png') });
+
+    // Scale about the centre keeps the centre; undo twice is the opened surface again.
+    await page.getByTestId('scale-factor').fill('0.5');
+    await page.getByTestId('scale-apply').click();
+    await expect(page.getByTestId('status')).toContainText('scaled the model');
+    await meshUpToDate(page);
+    const scaled = await box();
+    for (let c = 0; c < 3; ++c) {
+      expect((scaled.min[c] + scaled.max[c]) / 2).toBeCloseTo((after.min[c] + after.max[c]) / 2, 3);
+      expect(scaled.max[c] - scaled.min[c]).toBeCloseTo((after.max[c] - after.min[c]) / 2, 3);
+    }
+    await page.getByTestId('undo').click();
+    await expect.poll(async () => (await studio.state()).undo).toBe(1);
+    await page.getByTestId('undo').click();
+    await expect.poll(async () => (await studio.state()).undo).toBe(0);
+    await meshUpToDate(page);
+    const back = await box();
+    for (let c = 0; c < 3; ++c) expect(back.min[c]).toBeCloseTo(before.min[c], 5);
+    expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
+  });
+});
+
+test('Rotate turns a vertex-frame model about its centre: one undo step', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  const box = () => page.evaluate(() => (window as any).__studio.meshBox());
+  const before = await box();
+  const vertices = (await studio.state()).model.vertices;
+  await page.getByTestId('rotate-axis').selectOption('z');
+  await page.getByTestId('rotate-degrees').fill('90');
+  await page.getByTestId('rotate-apply').click();
+  await expect(page.getByTestId('status')).toContainText('rotated the model');
+  await meshUpToDate(page);
+  expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
+  const after = await box();
+  const c = [0, 1, 2].map((i) => (before.min[i] + before.max[i]) / 2);
+  // A quarter turn about z: x and y extents swap, the centre stays.
+  expect(after.max[0] - after.min[0]).toBeCloseTo(before.max[1] - before.min[1], 4);
+  expect(after.max[1] - after.min[1]).toBeCloseTo(before.max[0] - before.min[0], 4);
+  for (let i = 0; i < 3; ++i) expect((after.min[i] + after.max[i]) / 2).toBeCloseTo(c[i], 4);
+  const s = await studio.state();
+  expect(s.undo).toBe(1);
+  const [x, y] = vertices[0];
+  expect(s.model.vertices[0][0]).toBeCloseTo(c[0] - (y - c[1]), 9);
+  expect(s.model.vertices[0][1]).toBeCloseTo(c[1] + (x - c[0]), 9);
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: shot('sculpt-rotated.png') });
+  await page.getByTestId('undo').click();
+  await expect.poll(async () => (await studio.state()).model.vertices).toEqual(vertices);
+});
+
+test.describe('a B-spline PDE model', () => {
+  test.use({ example: 'bspline-blend.json' });
+  test('shows its control nets and surface, and rotates as a whole', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    await expect(page.getByTestId('status')).toContainText('bspline-pde model: view only');
+    await expect(page.getByTestId('frame-caption')).toHaveText('Control nets (view only)');
+    await meshUpToDate(page);
+    expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
+    const box = () => page.evaluate(() => (window as any).__studio.meshBox());
+    const before = await box();
+    await page.getByTestId('scale-factor').fill('2');
+    await page.getByTestId('scale-apply').click();
+    await meshUpToDate(page);
+    expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
+    const after = await box();
+    for (let c = 0; c < 3; ++c)  // scaled about the box centre: twice as wide, same centre
+      expect(after.max[c] - after.min[c]).toBeCloseTo(2 * (before.max[c] - before.min[c]), 4);
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: shot('bspline-blend.png') });
+  });
+});

@@ -154,6 +154,11 @@ class BSplinePdeSolver {
   std::unique_ptr<Impl> impl_;
 };
 
+/// How far a surface is from solving the PDE: the largest, over span pairs, |∂⁶x/∂u³∂v³| at
+/// the span's centre over Σ |t_s[k] t̃_r[l]| |P| of the same span (the size of the terms that
+/// cancel). Rounding level (≈ 1e-15) for a solved surface; O(1) for an arbitrary one.
+double pdeResidual(const BSplineSurface& surface);
+
 /// The mask row of span s (3 ≤ s ≤ n) of a cubic knot vector: t[r] = N'''_{s-3+r} on
 /// [t_s, t_{s+1}) (seed eq. 2.7, computed from the basis, not from eq. 3.10).
 std::array<double, 4> thirdDerivativeMask(std::span<const double> knots, std::uint32_t span);
@@ -216,28 +221,40 @@ constexpr std::uint32_t kBoundaryResampleFactor = 8;
 ControlNet boundaryNet(const BSplineBoundary& boundary);
 
 // ---------------------------------------------------------------------------------------
-// C1 blends of four pieces (seed Example 4).
+// C1 blends (seed Examples 4 and 5).
 
-/// Four clamped bicubic pieces on the global domain [0, 2]², piece (p, q) on
-/// [p, p+1] × [q, q+1] with local (u, v) = (U − p, V − q), stored pieces[2p + q].
+/// Clamped bicubic pieces on a global parameter domain made of unit squares: piece k covers
+/// [origin[k][0], +1] × [origin[k][1], +1] with local (u, v) = (U − origin₀, V − origin₁).
 struct C1Blend {
-  std::array<BSplineSurface, 4> pieces;
+  std::vector<BSplineSurface> pieces;
+  std::vector<std::array<std::uint32_t, 2>> origin;
+  /// The global V direction closes on itself (Example 5): V = 2 is V = 0.
+  bool closedV = false;
   /// max |mask or C1 equation| (rows scaled to a largest coefficient of 1) / extent
   double maxConstraintResidual = 0.0;
   double maxC1Gap = 0.0;  ///< max |∂x/∂U (or ∂V) left − right| over the seams / max |∂x|
 };
 
-/// The four curves of a 4-sided region on [0, 2]² (each clamped, any point count; corners
-/// shared) become one surface made of 2 × 2 PDE pieces with n + 1 control points a side
-/// (n ≥ 3), C1 across the seams U = 1 and V = 1. The rule for the seam and second-row points
-/// the seed leaves "chosen" (docs/bspline-pde.md): every piece solves the PDE on every span,
-/// the seams are C1 (equal spans: P_{n-1} + P_{n+1} = 2 P_n across each), the boundary is
-/// the curves (refitted on 2(n-2) uniform spans and split at 1/2 by knot insertion), and the
-/// remaining freedom minimises the global net's discrete thin-plate energy. Dense: O(n⁶).
-/// Throws std::invalid_argument naming the curve for fewer than 4 points, knots other than
-/// clamped, a non-finite point, corners that do not meet; and for n < 3.
+/// Example 4. The four curves of a 4-sided region on [0, 2]² (each clamped, any point count;
+/// corners shared) become one surface made of 2 × 2 PDE pieces with n + 1 control points a
+/// side (n ≥ 3), C1 across the seams U = 1 and V = 1; piece (p, q) is pieces[2p + q]. The rule
+/// for the seam and second-row points the seed leaves "chosen" (docs/bspline-pde.md): every
+/// piece solves the PDE on every span, the seams are C1 (equal spans: P_{n-1} + P_{n+1} =
+/// 2 P_n across each), the boundary is the curves (refitted on 2(n-2) uniform spans and split
+/// at 1/2 by knot insertion), and the remaining freedom minimises the global net's discrete
+/// thin-plate energy. Dense: O(n⁶). Throws std::invalid_argument naming the curve for fewer
+/// than 4 points, knots other than clamped, a non-finite point, corners that do not meet; and
+/// for n < 3.
 C1Blend blendFourCurves(const BSplineCurve& uMin, const BSplineCurve& uMax,
                         const BSplineCurve& vMin, const BSplineCurve& vMax, std::uint32_t n);
+
+/// Example 5. Two closed curves (clamped, first point = last point) become a closed tube of
+/// 1 × 2 PDE pieces, x(0, V) on `start` and x(1, V) on `end`, V ∈ [0, 2] once around; each
+/// curve is refitted on 2(n-2) spans, made C1 where it closes (the two end legs replaced by
+/// their mean) and split at 1/2. The seams V = 1 and V = 0 ≡ 2 are C1; the other points follow
+/// the same rule as blendFourCurves (PDE on every span, least thin-plate energy, periodic in
+/// V). Throws std::invalid_argument as blendFourCurves does, and for a curve that is not closed.
+C1Blend blendClosedCurves(const BSplineCurve& start, const BSplineCurve& end, std::uint32_t n);
 
 // ---------------------------------------------------------------------------------------
 // Tessellation.

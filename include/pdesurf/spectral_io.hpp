@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "pdesurf/bspline_pde_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/spectral.hpp"
 #include "pdesurf/vertex_frames.hpp"
@@ -35,12 +36,22 @@ struct CrossSectionModel {
 };
 
 /// Any model file.
-using AnyModel = std::variant<VertexFrameModel, SpectralModel, CrossSectionModel>;
+using AnyModel = std::variant<VertexFrameModel, SpectralModel, CrossSectionModel, BSplinePdeModel>;
+
+/// The "type" of a model file: "vertex-frames", "spectral", "cross-sections", "bspline-pde".
+const char* modelTypeName(const AnyModel& model);
 
 /// Parses and validates a model of any type (by its "type"); `source` names it in errors.
 AnyModel parseModel(std::string_view text, const std::string& source);
 /// Reads and parses a model file of any type (errors name the path).
 AnyModel loadModel(const std::string& path);
+
+/// The model as JSON text that parseModel reads back to the same model (numbers written
+/// shortest round-trip, every option written out). The AnyModel overload throws
+/// std::invalid_argument for a type it cannot write yet.
+std::string serializeModel(const SpectralModel& model);
+std::string serializeModel(const CrossSectionModel& model);
+std::string serializeModel(const AnyModel& model);
 
 /// Parses one closed curve as written in model files: {"points": [[x,y,z], ...], "v": [...]}
 /// or {"fourier": {"a0": [x,y,z], "a": [[...], ...], "b": [[...], ...]}}; `path` is its

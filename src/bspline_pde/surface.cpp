@@ -156,3 +156,28 @@ Mesh tessellate(const BSplineSurface& surface, const BSplineTessellateOptions& o
 }
 
 }  // namespace pdesurf
+
+namespace pdesurf {
+
+double pdeResidual(const BSplineSurface& surface) {
+  const ControlNet& net = surface.net();
+  std::vector<std::array<double, 4>> tu, tv;
+  for (std::uint32_t s = 3; s <= net.nu; ++s)
+    tu.push_back(thirdDerivativeMask(surface.uKnots(), s));
+  for (std::uint32_t s = 3; s <= net.nv; ++s)
+    tv.push_back(thirdDerivativeMask(surface.vKnots(), s));
+  double worst = 0.0;
+  for (std::uint32_t a = 0; a < surface.uSpans(); ++a)
+    for (std::uint32_t b = 0; b < surface.vSpans(); ++b) {
+      double scale = 0.0;
+      for (std::uint32_t r = 0; r < 4; ++r)
+        for (std::uint32_t q = 0; q < 4; ++q)
+          scale += std::abs(tu[a][r] * tv[b][q]) * net(a + r, b + q).norm();
+      const double u = (a + 0.5) / surface.uSpans(), v = (b + 0.5) / surface.vSpans();
+      const double d = surface.derivative(u, v, 3, 3).norm();
+      worst = std::max(worst, scale > 0.0 ? d / scale : d);
+    }
+  return worst;
+}
+
+}  // namespace pdesurf

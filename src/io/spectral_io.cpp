@@ -2,6 +2,7 @@
 // and the dispatch on "type" for every model file.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <set>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/json_reader.hpp"
+#include "io/model_reader.hpp"
 #include "pdesurf/spectral_io.hpp"
 
 namespace pdesurf {
@@ -28,64 +30,10 @@ constexpr std::uint32_t kMaxModes = 64;
 /// Ugail's N: order 2N up to 80 (the Klein bottle is order 40).
 constexpr std::uint32_t kMaxUgailPower = 40;
 
-/// Reading of the members both model types share, on top of the vertex-frame Reader.
-class SpectralReader : public Reader {
+/// The spectral types' readers: closed curves and the options both types share.
+class SpectralReader : public detail::ModelReader {
  public:
-  using Reader::Reader;
-
-  std::uint32_t integer(const Json& j, const std::string& path, std::uint32_t lo,
-                        std::uint32_t hi) const {
-    if (!j.is_number_integer())
-      fail(path, fmt::format("expected an integer, found {}",
-                             j.is_number() ? j.dump() : std::string(typeName(j))));
-    const bool negative = !j.is_number_unsigned() && j.get<std::int64_t>() < 0;
-    if (negative || j.get<std::uint64_t>() < lo || j.get<std::uint64_t>() > hi)
-      fail(path, fmt::format("{} is out of range (expected {} to {})", j.dump(), lo, hi));
-    return static_cast<std::uint32_t>(j.get<std::uint64_t>());
-  }
-
-  std::string string(const Json& j, const std::string& path) const {
-    if (!j.is_string()) fail(path, fmt::format("expected a string, found {}", typeName(j)));
-    return j.get<std::string>();
-  }
-
-  bool boolean(const Json& j, const std::string& path) const {
-    if (!j.is_boolean()) fail(path, fmt::format("expected true or false, found {}", typeName(j)));
-    return j.get<bool>();
-  }
-
-  /// One of the listed words.
-  template <typename T>
-  T choice(const Json& j, const std::string& path,
-           std::initializer_list<std::pair<const char*, T>> words) const {
-    const std::string word = string(j, path);
-    std::string known;
-    for (const auto& [name, value] : words) {
-      if (word == name) return value;
-      known += fmt::format("{}\"{}\"", known.empty() ? "" : ", ", name);
-    }
-    fail(path, fmt::format("unknown value \"{}\" (expected one of {})", word, known));
-  }
-
-  /// Members a document of this type may have; anything else is a typo worth reporting.
-  void onlyMembers(const Json& obj, const std::string& path,
-                   std::initializer_list<const char*> allowed) const {
-    for (const auto& [key, value] : obj.items()) {
-      bool ok = false;
-      for (const char* a : allowed) ok = ok || key == a;
-      if (!ok) {
-        std::string list;
-        for (const char* a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
-        fail(path, fmt::format("unknown field \"{}\" (expected {})", key, list));
-      }
-    }
-  }
-
-  void header(const Json& doc, std::string& name, std::string& description) const {
-    if (auto it = doc.find("name"); it != doc.end()) name = string(*it, "$.name");
-    if (auto it = doc.find("description"); it != doc.end())
-      description = string(*it, "$.description");
-  }
+  using ModelReader::ModelReader;
 
   /// A closed curve: points (with optional v) or Fourier coefficients. `modes` > 0: the
   /// points must be enough to fit that many modes.
@@ -301,10 +249,17 @@ AnyModel parseModel(std::string_view text, const std::string& source) {
   if (type == "vertex-frames") return detail::parseVertexFrameDocument(doc, rd);
   if (type == "spectral") return parseSpectral(doc, rd);
   if (type == "cross-sections") return parseCrossSections(doc, rd);
+  if (type == "bspline-pde") return detail::parseBSplinePdeDocument(doc, source);
   rd.fail("$.type",
-          fmt::format("unknown model type \"{}\" (expected \"vertex-frames\", \"spectral\" or "
-                      "\"cross-sections\")",
+          fmt::format("unknown model type \"{}\" (expected \"vertex-frames\", \"spectral\", "
+                      "\"cross-sections\" or \"bspline-pde\")",
                       type));
+}
+
+const char* modelTypeName(const AnyModel& model) {
+  constexpr const char* kNames[] = {"vertex-frames", "spectral", "cross-sections", "bspline-pde"};
+  static_assert(std::size(kNames) == std::variant_size_v<AnyModel>);
+  return kNames[model.index()];
 }
 
 AnyModel loadModel(const std::string& path) {

@@ -1,6 +1,10 @@
 // Editing sessions: edits, undo/redo with grouping, cached solves.
 #include "pdesurf/session.hpp"
 
+#include <stdexcept>
+
+#include "pdesurf/model_io.hpp"
+
 namespace pdesurf {
 
 ModelSession::ModelSession(VertexFrameModel model)
@@ -13,12 +17,7 @@ void ModelSession::changed() {
 }
 
 void ModelSession::apply(const Edit& edit, std::string_view group) {
-  if (group.empty() || group != group_) {
-    undo_.push_back(model_);
-    if (undo_.size() > kMaxUndo) undo_.erase(undo_.begin());
-  }
-  group_ = std::string(group);
-  redo_.clear();
+  history_.record(model_, group);
   std::visit(
       [&](const auto& e) {
         using T = std::decay_t<decltype(e)>;
@@ -31,27 +30,28 @@ void ModelSession::apply(const Edit& edit, std::string_view group) {
           }
         } else if constexpr (std::is_same_v<T, SetFrameForces>) {
           model_.frames[e.frame].forces = e.forces;
-        } else {
+        } else if constexpr (std::is_same_v<T, SetSharedForces>) {
           model_.forces = e.forces;
+        } else {
+          static_assert(std::is_same_v<T, TransformModel>);
+          model_ = transformModel(model_, e.map);
         }
       },
       edit);
   changed();
 }
 
-bool ModelSession::step(std::vector<VertexFrameModel>& from, std::vector<VertexFrameModel>& to) {
-  if (from.empty()) return false;
-  to.push_back(std::move(model_));
-  model_ = std::move(from.back());
-  from.pop_back();
-  group_.clear();
+bool ModelSession::undo() {
+  if (!history_.undo(model_)) return false;
   changed();
   return true;
 }
 
-bool ModelSession::undo() { return step(undo_, redo_); }
-
-bool ModelSession::redo() { return step(redo_, undo_); }
+bool ModelSession::redo() {
+  if (!history_.redo(model_)) return false;
+  changed();
+  return true;
+}
 
 const VertexFrameSurface& ModelSession::surface(const SolveOptions& options) {
   const bool sameOptions =
@@ -62,6 +62,47 @@ const VertexFrameSurface& ModelSession::surface(const SolveOptions& options) {
     surfaceOptions_ = options;
   }
   return *surface_;
+}
+
+// ---------------------------------------------------------------------------------------
+// Spectral and cross-section models
+
+SpectralSession::Solved SpectralSession::solve(AnyModel model) const {
+  SolvedSpectral solved;
+  std::optional<SolvedBSplinePde> bspline;
+  if (const auto* m = std::get_if<SpectralModel>(&model)) {
+    solved = solveSpectralModel(*m, source_);
+  } else if (const auto* c = std::get_if<CrossSectionModel>(&model)) {
+    solved = solveSpectralModel(*c, source_);
+  } else if (const auto* b = std::get_if<BSplinePdeModel>(&model)) {
+    solved.type = "bspline-pde";
+    bspline = solveBSplineModel(*b, source_);
+  } else {
+    throw ModelError(source_, "$.type", "vertex-frames models open in a ModelSession");
+  }
+  return {std::move(model), std::move(solved), std::move(bspline)};
+}
+
+SpectralSession::SpectralSession(AnyModel model, std::string source)
+    : source_(std::move(source)), current_(solve(std::move(model))) {}
+
+void SpectralSession::transform(const AffineMap& map) {
+  Solved next = solve(transformModel(current_.model, map));  // may throw: nothing changed yet
+  history_.record(current_, {});
+  current_ = std::move(next);
+  ++revision_;
+}
+
+bool SpectralSession::undo() {
+  if (!history_.undo(current_)) return false;
+  ++revision_;
+  return true;
+}
+
+bool SpectralSession::redo() {
+  if (!history_.redo(current_)) return false;
+  ++revision_;
+  return true;
 }
 
 }  // namespace pdesurf

@@ -723,6 +723,53 @@ TEST(BSplineBlend, FourPiecesAreC1AndSolveThePde) {
   EXPECT_EQ(exact.pieces.size(), 4u);
 }
 
+// Seed Example 5: two closed curves, a tube of 1 × 2 PDE pieces, C1 across both seams
+// (V = 1 and the wrap V = 0 ≡ 2), interpolating the refitted curves.
+TEST(BSplineBlend, ClosedTubeIsC1AllAround) {
+  const auto ring = [](double r, double z, double wobble) {
+    return [=](double t) {
+      const double a = 2.0 * std::numbers::pi * t;
+      return Vec3(r * std::cos(a), r * (1.0 + wobble * std::sin(2.0 * a)) * std::sin(a), z);
+    };
+  };
+  const BSplineCurve end = curveOf(ring(1.5, 2.0, 0.2), 17);
+  for (std::uint32_t n : {4u, 6u}) {
+    // A start curve that is closed and C1 where it closes, with the blend's own point count
+    // (2n - 1): the blend keeps it exactly.
+    BSplineCurve start;
+    const std::uint32_t last = 2 * n - 2;
+    start.points.resize(last + 1);
+    for (std::uint32_t k = 1; k < last; ++k)
+      start.points[k] = ring(1.0, 0.0, 0.0)((k - 0.5) / (last - 1.0));
+    start.points[0] = start.points[last] = 0.5 * (start.points[1] + start.points[last - 1]);
+    const C1Blend blend = blendClosedCurves(start, end, n);
+    ASSERT_EQ(blend.pieces.size(), 2u);
+    EXPECT_TRUE(blend.closedV);
+    EXPECT_LT(blend.maxConstraintResidual, kBlendTolerance) << n;
+    EXPECT_LT(blend.maxC1Gap, kBlendTolerance) << n;
+    for (const BSplineSurface& piece : blend.pieces) {
+      const auto [mask, eval] = sixthDerivativeResidual(piece);
+      EXPECT_LT(mask, kSixthDerivativeTolerance) << n;
+      EXPECT_LT(eval, kSixthDerivativeTolerance) << n;
+    }
+    for (double t = 0.0; t <= 1.0; t += 0.0625) {
+      // C0 at both seams; the ends are the start curve and lie in the end ring's plane.
+      EXPECT_LT((blend.pieces[0].position(t, 1.0) - blend.pieces[1].position(t, 0.0)).norm(),
+                1e-12);
+      EXPECT_LT((blend.pieces[1].position(t, 1.0) - blend.pieces[0].position(t, 0.0)).norm(),
+                1e-12);
+      EXPECT_LT((blend.pieces[0].position(0.0, t) - start.evaluate(0.5 * t)).norm(), 1e-12);
+      EXPECT_LT((blend.pieces[1].position(0.0, t) - start.evaluate(0.5 + 0.5 * t)).norm(), 1e-12);
+      EXPECT_NEAR(blend.pieces[1].position(1.0, t).z(), 2.0, 1e-12);
+    }
+  }
+  const BSplineCurve start = curveOf(ring(1.0, 0.0, 0.0), 13);
+  BSplineCurve open = start;
+  open.points.back().x() += 0.5;
+  expectInvalid([&] { blendClosedCurves(open, end, 5); }, "curve start is not closed");
+  expectInvalid([&] { blendClosedCurves(start, end, 2); }, "at least 3");
+}
+
 TEST(BSplineBlend, RejectsBadCurves) {
   const auto line = [](double t) { return Vec3(2.0 * t, 0, 0); };
   const BSplineCurve a = curveOf([](double t) { return Vec3(0, 2.0 * t, 0); }, 5);

@@ -148,7 +148,8 @@ TEST_F(CliSpectral, RefusesWithExitCodesAndLeavesNoFile) {
     "frames": [{"vertices": [0,1,2,3,4,5,6,7]}]})");
   r = run("spine frame.json");
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("has no spine"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("only spectral and cross-sections models have a spine"), std::string::npos)
+      << r.err;
   writeFile(work_.file("fourier.json"),
             R"({"curves": [{"fourier": {"a0": [0,0,0], "a": [[1,0,0]], "b": [[0,1,0]]}}]})");
   r = run("fit fourier.json --terms 2");

@@ -8,6 +8,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -25,6 +27,7 @@
 
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
+#include "pdesurf/spectral_io.hpp"
 #include "server.hpp"
 // After Eigen (through the pdesurf headers): httplib.h brings <resolv.h> and its `_res`.
 #include <httplib.h>
@@ -504,11 +507,13 @@ TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedButNotEdited) {
   EXPECT_EQ(mesh.vertexCount, 5u * 16u);  // 5 rows, 4(5 − 1) columns, the seam shared
   EXPECT_EQ(mesh.revision, m["revision"].get<std::uint32_t>());
 
-  for (const char* route : {"/api/edit", "/api/undo", "/api/redo", "/api/end-group"}) {
+  for (const char* route : {"/api/edit", "/api/end-group"}) {
     const auto [status, message] = failure(post(route, move(0, 0, 0, 0)));
     EXPECT_EQ(status, 409) << route;
     EXPECT_NE(message.find("spectral models are view-only"), std::string::npos) << message;
   }
+  EXPECT_EQ(failure(post("/api/undo")), std::pair(409, std::string("nothing to undo")));
+  EXPECT_EQ(failure(post("/api/redo")), std::pair(409, std::string("nothing to redo")));
   const auto exported = post("/api/export", R"({"path": "tube.obj", "resolution": 5})");
   ASSERT_EQ(exported->status, 200) << exported->body;
   EXPECT_EQ(readMesh((root_ / "tube.obj").string()).vertexCount(), mesh.vertexCount);
@@ -524,6 +529,168 @@ TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedButNotEdited) {
   EXPECT_EQ(g["editable"], true);
   EXPECT_GT(g["revision"].get<int>(), m["revision"].get<int>());
   EXPECT_EQ(post("/api/edit", move(0, 0, 0, 0.2))->status, 200);
+}
+
+/// The bounding box of a mesh's positions: min x, y, z then max x, y, z.
+std::array<double, 6> meshBox(const MeshData& m) {
+  std::array<double, 6> box = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    box[i % 3] = std::min<double>(box[i % 3], m.positions[i]);
+    box[3 + i % 3] = std::max<double>(box[3 + i % 3], m.positions[i]);
+  }
+  return box;
+}
+
+TEST_F(StudioServerTest, TransformMovesTheModelAndUndoesRedoesAndSaves) {
+  const Json original = model()["model"];
+  const MeshData before = mesh("?resolution=5");
+  const auto r = post("/api/transform", R"({"translate": [1, 2, 3]})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  const Json st = Json::parse(r->body);
+  EXPECT_EQ(st["revision"], 1);
+  EXPECT_EQ(st["undo"], 1);
+  EXPECT_EQ(st["dirty"], true);
+  Json m = model();
+  EXPECT_EQ(m["model"]["vertices"][6], Json({1.5, 2.5, 3}));  // (0.5, 0.5, 0) moved
+  const MeshData after = mesh("?resolution=5");
+  ASSERT_EQ(after.positions.size(), before.positions.size());
+  for (std::size_t i = 0; i < after.positions.size(); ++i)
+    EXPECT_NEAR(after.positions[i], before.positions[i] + 1.0 + i % 3, 1e-5);
+
+  // Scale 2 about the grid's centre, then a quarter turn about z through it: one step each.
+  ASSERT_EQ(post("/api/transform", R"({"scale": 2, "center": [2, 3, 3]})")->status, 200);
+  ASSERT_EQ(post("/api/transform",
+                 R"({"rotate": {"axis": [0, 0, 1], "degrees": 90, "center": [2, 3, 3]}})")
+                ->status,
+            200);
+  m = model();
+  EXPECT_EQ(m["undo"], 3);
+  const Json v = m["model"]["vertices"][0];  // (0, 0, 0) → (1, 2, 3) → (0, 1, 3) → (4, 1, 3)
+  EXPECT_NEAR(v[0].get<double>(), 4, 1e-12);
+  EXPECT_NEAR(v[1].get<double>(), 1, 1e-12);
+  EXPECT_NEAR(v[2].get<double>(), 3, 1e-12);
+  server_->flushJournal();
+  EXPECT_EQ(readText(root_ / "grid.json.autosave"),
+            serializeVertexFrameModel(parseVertexFrameModel(m["model"].dump(), "model")));
+
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(post("/api/undo")->status, 200);
+  EXPECT_EQ(model()["model"], original);
+  ASSERT_EQ(post("/api/redo")->status, 200);
+  EXPECT_EQ(model()["model"]["vertices"][6], Json({1.5, 2.5, 3}));
+  ASSERT_EQ(post("/api/save")->status, 200);
+  EXPECT_EQ(parseVertexFrameModel(readText(model_), "saved").vertices[6], Vec3(1.5, 2.5, 3));
+  EXPECT_EQ(model()["dirty"], false);
+}
+
+TEST_F(StudioServerTest, BadTransformsAreRefusedNamingTheField) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"scale": 0})", "$.scale: scale 0 is not a finite number above 0"},
+      {R"({"scale": -1, "center": [0, 0, 0]})", "$.scale"},
+      {R"({"scale": "big"})", "$.scale: expected a number, found a string"},
+      {R"({"translate": [1, "2", 3]})", "$.translate[1]: expected a number"},
+      {R"({"rotate": {"axis": [0, 0, 0], "degrees": 45}})", "$.rotate.axis"},
+      {R"({"rotate": {"axis": [0, 0, 1]}})", "$.rotate: missing required field \"degrees\""},
+      {R"({})", "$: a transform needs"},
+      {R"({"translate": [1, 2, 3)", "malformed JSON"},
+  };
+  for (const auto& [body, message] : cases) {
+    const auto [status, error] = failure(post("/api/transform", body));
+    EXPECT_EQ(status, 400) << body;
+    EXPECT_NE(error.find(message), std::string::npos) << body << " gave " << error;
+  }
+  EXPECT_EQ(model()["revision"], 0);
+  EXPECT_EQ(model()["undo"], 0);
+}
+
+TEST_F(StudioServerTest, SpectralModelsAreTransformedUndoneSavedAndJournaled) {
+  const std::string tube = R"({"type": "spectral", "name": "tube", "operator": "ugail", "N": 1,
+    "modes": 2, "conditions": [
+      {"u": 0, "curve": {"fourier": {"a0": [0, 0, 0], "a": [[1, 0, 0]], "b": [[0, 1, 0]]}}},
+      {"u": 1, "curve": {"fourier": {"a0": [0, 0, 1], "a": [[0.5, 0, 0]], "b": [[0, 0.5, 0]]}}}]})";
+  writeText(root_ / "tube.json", tube);
+  ASSERT_EQ(post("/api/open", R"({"path": "tube.json"})")->status, 200);
+  const Json opened = model();
+  const MeshData before = mesh("?resolution=5");
+  const auto r = post("/api/transform", R"({"translate": [0, 0, 2], "scale": 3})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  Json m = model();
+  EXPECT_EQ(m["editable"], false);
+  EXPECT_EQ(m["undo"], 1);
+  EXPECT_EQ(m["dirty"], true);
+  EXPECT_EQ(m["model"]["conditions"][1]["curve"]["fourier"]["a0"], Json({0, 0, 5}));
+  EXPECT_EQ(m["model"]["conditions"][1]["curve"]["fourier"]["a"][0], Json({1.5, 0, 0}));
+  for (const Json& p : m["view"]["curves"][0])  // the unit circle, now radius 3 at z = 2
+    EXPECT_NEAR(std::hypot(p[0].get<double>(), p[1].get<double>()), 3.0, 1e-12);
+  const MeshData after = mesh("?resolution=5");
+  ASSERT_EQ(after.positions.size(), before.positions.size());
+  for (std::size_t i = 0; i < after.positions.size(); ++i)
+    EXPECT_NEAR(after.positions[i], 3 * before.positions[i] + (i % 3 == 2 ? 2 : 0), 1e-5);
+  const auto box = meshBox(after);
+  EXPECT_NEAR(box[2], 2, 1e-6);
+  EXPECT_NEAR(box[5], 5, 1e-6);
+
+  // Other edits stay refused; undo and redo work.
+  EXPECT_EQ(failure(post("/api/edit", move(0, 0, 0, 0))).first, 409);
+  ASSERT_EQ(post("/api/undo")->status, 200);
+  EXPECT_EQ(model()["model"], opened["model"]);
+  ASSERT_EQ(post("/api/redo")->status, 200);
+  m = model();
+  EXPECT_EQ(m["model"]["conditions"][1]["curve"]["fourier"]["a0"], Json({0, 0, 5}));
+
+  // The journal holds the transformed model; a crash offers it back.
+  server_->flushJournal();
+  ASSERT_TRUE(fs::exists(root_ / "tube.json.autosave"));
+  EXPECT_EQ(Json::parse(readText(root_ / "tube.json.autosave")), m["model"]);
+  model_ = root_ / "tube.json";
+  crashAndRestart();
+  EXPECT_EQ(model()["recovery"], true);
+  ASSERT_EQ(post("/api/recover")->status, 200);
+  EXPECT_EQ(model()["model"], m["model"]);
+  EXPECT_EQ(model()["undo"], 0);
+
+  // Save writes the transformed model; it reads back as a spectral model of that shape.
+  ASSERT_EQ(post("/api/save")->status, 200);
+  EXPECT_FALSE(fs::exists(root_ / "tube.json.autosave"));
+  const AnyModel saved = parseModel(readText(root_ / "tube.json"), "saved");
+  ASSERT_TRUE(std::holds_alternative<SpectralModel>(saved));
+  EXPECT_EQ(Json::parse(readText(root_ / "tube.json")), m["model"]);
+  EXPECT_EQ(model()["dirty"], false);
+}
+
+TEST_F(StudioServerTest, BSplineModelsAreShownTransformedAndSaved) {
+  // Example 5 (a closed blend): the studio shows its control nets and its surface, moves it,
+  // and saves a file that reads back as the moved model.
+  fs::copy_file(fs::path(PDESURF_SOURCE_DIR) / "examples" / "bspline-tube.json",
+                root_ / "tube.json");
+  ASSERT_EQ(post("/api/open", R"({"path": "tube.json"})")->status, 200);
+  Json m = model();
+  EXPECT_EQ(m["model"]["type"], "bspline-pde");
+  EXPECT_EQ(m["editable"], false);
+  // Two pieces of 7 × 7 control points: 7 rows and 7 columns each.
+  EXPECT_EQ(m["view"]["curves"].size(), 2u * 14u);
+  const MeshData before = mesh("?resolution=9");
+  ASSERT_GT(before.positions.size(), 0u);
+  EXPECT_EQ(failure(post("/api/edit", move(0, 0, 0, 0))).first, 409);
+
+  ASSERT_EQ(post("/api/transform", R"({"translate": [1, 0, 0]})")->status, 200);
+  const MeshData after = mesh("?resolution=9");
+  ASSERT_EQ(after.positions.size(), before.positions.size());
+  for (std::size_t i = 0; i < after.positions.size(); ++i)
+    EXPECT_NEAR(after.positions[i], before.positions[i] + (i % 3 == 0 ? 1 : 0), 1e-5);
+  ASSERT_EQ(post("/api/save")->status, 200);
+  const AnyModel saved = parseModel(readText(root_ / "tube.json"), "saved");
+  const auto& tube = std::get<BSplinePdeModel>(saved);
+  EXPECT_EQ(tube.form, BSplinePdeModel::Form::ClosedBlend);
+  const BSplinePdeModel original = std::get<BSplinePdeModel>(
+      loadModel((fs::path(PDESURF_SOURCE_DIR) / "examples" / "bspline-tube.json").string()));
+  for (std::size_t c = 0; c < 2; ++c)
+    for (std::size_t k = 0; k < tube.curves[c].points.size(); ++k)
+      EXPECT_LT((tube.curves[c].points[k] - original.curves[c].points[k] - Vec3(1, 0, 0)).norm(),
+                1e-15);
+  ASSERT_EQ(post("/api/undo")->status, 200);
+  EXPECT_EQ(model()["dirty"], true);  // the file on disk holds the moved model now
 }
 
 TEST_F(StudioServerTest, ExportWritesAReadableMesh) {

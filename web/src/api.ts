@@ -67,6 +67,15 @@ export type Edit =
   | { op: 'set-forces'; frame: number; forces: FrameForce[]; group?: string }
   | { op: 'set-shared-forces'; forces: SharedForce[]; group?: string };
 
+/** A whole-model transform (POST /api/transform), of any model type: scale about
+ * `center`, then rotate (about its own center, else `center`), then translate. */
+export interface Transform {
+  translate?: Vec3;
+  rotate?: { axis: Vec3; degrees: number; center?: Vec3 };
+  scale?: number;
+  center?: Vec3;
+}
+
 /** The surface as the server streams it (GET /api/mesh). */
 export interface MeshData {
   kind: 'full';
@@ -237,6 +246,7 @@ export const api = {
   model: () => request<ModelState>('GET', '/api/model'),
   edit: (edit: Edit) => request<Status>('POST', '/api/edit', edit),
   endGroup: () => request<Status>('POST', '/api/end-group'),
+  transform: (t: Transform) => request<Status>('POST', '/api/transform', t),
   undo: () => request<Status>('POST', '/api/undo'),
   redo: () => request<Status>('POST', '/api/redo'),
   files: async () => (await request<{ files: string[] }>('GET', '/api/files')).files,

@@ -3,7 +3,7 @@
 // edits (so a drag is smooth) and reloads after undo, redo, open and any refused edit.
 import './style.css';
 import { api, applyDelta, ApiError } from './api';
-import type { Edit, FrameForce, MeshData, Model, ModelState, Region, SharedForce, Status, Vec3 } from './api';
+import type { Edit, FrameForce, MeshData, Model, ModelState, Region, SharedForce, Status, Transform, Vec3 } from './api';
 import { FrameView, SurfaceView, modelBox, pointsBox } from './scene';
 
 const $ = <T extends HTMLElement = HTMLElement>(id: string): T => {
@@ -25,7 +25,7 @@ interface State {
   selectedForce: number;
   mesh: MeshData | null;
   meshStale: boolean;
-  /** The type of a view-only model (spectral, cross-sections), or '' for an editable one. */
+  /** The type of a view-only model (spectral, cross-sections, bspline-pde), or '' for an editable one. */
   viewOnly: string;
   error: string;
   message: string;
@@ -69,7 +69,7 @@ function renderStatus(): void {
     parts.push(`solve ${state.mesh.solveMs.toFixed(2)} ms`, `tessellate ${state.mesh.tessellateMs.toFixed(2)} ms`);
     parts.push(`${plural(state.mesh.triangleCount, 'triangle')}`);
   }
-  if (state.viewOnly) parts.push(`${state.viewOnly} model: view only (edit its file)`);
+  if (state.viewOnly) parts.push(`${state.viewOnly} model: view only (edit its file; Transform moves it)`);
   if (state.meshStale) parts.push('surface out of date (Create)');
   if (state.message) parts.push(state.message);
   $('status').textContent = parts.join(' · ');
@@ -260,12 +260,13 @@ function applyViewOnly(s: ModelState, fit: boolean): void {
   state.status = s;
   state.selectedVertex = null;
   state.selectedFrames.clear();
-  $('recovery').hidden = true;
+  $('recovery').hidden = !s.recovery;  // transforms are journaled: a crash can leave some
   const exportName = $<HTMLInputElement>('export-name');
   if (fit || !exportName.value) exportName.value = s.path.replace(/\.json$/, '');
   const view = s.view ?? { curves: [], spines: [] };
   frameView.showCurves(view.curves, view.spines);
-  $('frame-caption').textContent = 'Curves and spine (view only)';
+  $('frame-caption').textContent =
+    state.viewOnly === 'bspline-pde' ? 'Control nets (view only)' : 'Curves and spine (view only)';
   surfaceView.setOverlay(false);
   renderPanel();
   renderStatus();
@@ -684,6 +685,66 @@ function renderPanel(): void {
 }
 
 // ----------------------------------------------------------------------------------------
+// Transform: the whole model, any type, one undo step each
+
+/** The bounding box of the page's surface mesh (null before the first mesh). */
+function meshBox(): { min: Vec3; max: Vec3 } | null {
+  const p = state.mesh?.positions;
+  if (!p || p.length < 3) return null;
+  const min: Vec3 = [Infinity, Infinity, Infinity];
+  const max: Vec3 = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < p.length; i += 3)
+    for (let c = 0; c < 3; ++c) {
+      min[c] = Math.min(min[c], p[i + c]);
+      max[c] = Math.max(max[c], p[i + c]);
+    }
+  return { min, max };
+}
+
+/** Where rotations and scaling pivot: the centre of the surface's bounding box (of the
+ * vertices while there is no mesh yet). */
+function modelCenter(): Vec3 {
+  const box = meshBox();
+  if (box) return [0, 1, 2].map((c) => (box.min[c] + box.max[c]) / 2) as Vec3;
+  if (state.model) {
+    const b = modelBox(state.model);
+    return [(b.min.x + b.max.x) / 2, (b.min.y + b.max.y) / 2, (b.min.z + b.max.z) / 2];
+  }
+  return [0, 0, 0];
+}
+
+function numberOf(id: string): number {
+  const input = $<HTMLInputElement>(id);
+  const value = Number(input.value);
+  if (input.value.trim() === '' || !Number.isFinite(value)) throw new Error(`${input.title}: type a number`);
+  return value;
+}
+
+async function applyTransform(what: string, make: () => Transform): Promise<void> {
+  await run(async () => {
+    state.status = await api.transform(make());
+    state.message = what;
+    await reloadAll(true); // the views follow the model (the grid shows where it went)
+  });
+}
+
+$('move-apply').addEventListener('click', () =>
+  void applyTransform('moved the model', () => ({
+    translate: [numberOf('move-x'), numberOf('move-y'), numberOf('move-z')],
+  })),
+);
+$('rotate-apply').addEventListener('click', () =>
+  void applyTransform('rotated the model', () => {
+    const axis: Vec3 = [0, 0, 0];
+    axis[['x', 'y', 'z'].indexOf($<HTMLSelectElement>('rotate-axis').value)] = 1;
+    return { rotate: { axis, degrees: numberOf('rotate-degrees') }, center: modelCenter() };
+  }),
+);
+$('scale-apply').addEventListener('click', () =>
+  void applyTransform('scaled the model', () => ({ scale: numberOf('scale-factor'), center: modelCenter() })),
+);
+
+// ----------------------------------------------------------------------------------------
 // Toolbar
 
 async function run(action: () => Promise<void>): Promise<void> {
@@ -824,6 +885,8 @@ window.__studio = {
     surface: Array.from({ length: n }, () => surfaceView.renderTimed()),
   }),
   state: () => ({ revision: state.status?.revision, mesh: state.mesh?.revision, error: state.error, meshDeltas }),
+  /** The bounding box of the page's surface mesh. */
+  meshBox,
 };
 
 renderPanel();

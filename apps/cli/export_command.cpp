@@ -1,0 +1,176 @@
+#include "export_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+#include <type_traits>
+#include <variant>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "pdesurf/cad_export.hpp"
+#include "pdesurf/nurbs.hpp"
+#include "pdesurf/spectral_io.hpp"
+#include "pdesurf/vertex_frames.hpp"
+
+namespace pdesurf::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+constexpr int kExitUsage = 2;
+
+/// A well-formed argument that cannot be used (exit 2).
+struct ExportUsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::string displayName(const std::string& name, const std::string& path) {
+  if (!name.empty()) return name;
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+std::string plural(std::size_t n, const std::string& noun) {
+  return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
+
+struct Converted {
+  std::string name;
+  NurbsModel nurbs;
+  double solveMs = 0.0, convertMs = 0.0;
+};
+
+Converted convert(const std::string& path, const NurbsExportOptions& options) {
+  const AnyModel any = loadModel(path);
+  Converted out;
+  std::visit(
+      [&](const auto& model) {
+        using T = std::decay_t<decltype(model)>;
+        auto t0 = Clock::now();
+        if constexpr (std::is_same_v<T, VertexFrameModel>) {
+          out.name = displayName(model.name, path);
+          const VertexFrameSurface surface = solve(model);
+          out.solveMs = msSince(t0);
+          t0 = Clock::now();
+          out.nurbs = toNurbs(surface, options);
+        } else if constexpr (std::is_same_v<T, SpectralModel> ||
+                             std::is_same_v<T, CrossSectionModel>) {
+          out.name = displayName(model.name, path);
+          const SolvedSpectral solved = solveSpectralModel(model, path);
+          out.solveMs = msSince(t0);
+          t0 = Clock::now();
+          out.nurbs = toNurbs(solved, options);
+        } else {
+          static_assert(std::is_same_v<T, BSplinePdeModel>);
+          out.name = displayName(model.name, path);
+          const SolvedBSplinePde solved = solveBSplineModel(model, path);
+          out.solveMs = msSince(t0);
+          t0 = Clock::now();
+          out.nurbs = toNurbs(std::span<const BSplineSurface>(solved.pieces), options);
+        }
+        out.convertMs = msSince(t0);
+      },
+      any);
+  return out;
+}
+
+}  // namespace
+
+CLI::App* ExportCommand::add(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand(
+      "export",
+      "Write a model's patches as B-spline faces, sewn into shells, to STEP or IGES (chosen by "
+      "the output's extension): exact where a patch is polynomial, within --tolerance otherwise");
+  cmd->add_option("model", modelPath, "model file (JSON)")->required();
+  cmd->add_option("-o,--output", outPath, "file to write: .step .stp .igs .iges")->required();
+  toleranceOption = cmd->add_option(
+      "--tolerance", tolerance,
+      "largest deviation of an approximated face from its patch, in model units (default: "
+      "1e-4 of the model's bounding-box diagonal); also the sewing tolerance");
+  cmd->add_flag("--json", json, "print the report as JSON");
+  cmd->add_flag("-q,--quiet", quiet, "print nothing on success");
+  return cmd;
+}
+
+int ExportCommand::run() const {
+  try {
+    NurbsExportOptions options;
+    if (toleranceOption && toleranceOption->count() > 0) {
+      if (!std::isfinite(tolerance) || tolerance <= 0.0)
+        throw ExportUsageError(
+            fmt::format("--tolerance {}: must be a positive, finite distance", tolerance));
+      options.tolerance = tolerance;
+    }
+    CadFormat format;
+    try {
+      format = cadFormatFromPath(outPath);
+    } catch (const CadError& e) {
+      throw ExportUsageError(e.what());
+    }
+    Converted model;
+    try {
+      model = convert(modelPath, options);
+    } catch (const NurbsToleranceError& e) {
+      throw ExportUsageError(fmt::format("{}: {}", modelPath, e.what()));
+    }
+    const NurbsModel& nurbs = model.nurbs;
+    const auto t0 = Clock::now();
+    const CadExportReport report = writeCad(nurbs, outPath, format);
+    const double writeMs = msSince(t0);
+    if (quiet) return 0;
+    const double deviation = nurbs.maxDeviation();
+    const double relative = nurbs.diagonal > 0.0 ? deviation / nurbs.diagonal : deviation;
+    const std::size_t exact = nurbs.exactCount();
+    if (json) {
+      Json faces = Json::array();
+      for (const NurbsFace& f : nurbs.faces)
+        faces.push_back({{"patch", f.patch},
+                         {"exact", f.exact},
+                         {"deviation", f.deviation},
+                         {"poles", {f.surface.uCount, f.surface.vCount}}});
+      const Json j = {{"model", modelPath},
+                      {"output", outPath},
+                      {"format", format == CadFormat::Step ? "step" : "iges"},
+                      {"exact_faces", exact},
+                      {"approximated_faces", nurbs.faces.size() - exact},
+                      {"tolerance", nurbs.tolerance},
+                      {"diagonal", nurbs.diagonal},
+                      {"max_deviation", deviation},
+                      {"max_deviation_relative", relative},
+                      {"sewing",
+                       {{"tolerance", report.sewingTolerance},
+                        {"shells", report.shells},
+                        {"free_edges", report.freeEdges},
+                        {"multiple_edges", report.multipleEdges},
+                        {"degenerated_edges", report.degeneratedEdges}}},
+                      {"faces", std::move(faces)}};
+      std::cout << j.dump(2) << '\n';
+      return 0;
+    }
+    fmt::print(
+        "{}: {} ({} exact, {} approximated), max deviation {:.2g} ({:.2g} of the bounding-box "
+        "diagonal), tolerance {:.3g} -> {} (solve {:.3f} ms, convert {:.3f} ms, write {:.1f} "
+        "ms)\n",
+        model.name, plural(nurbs.faces.size(), "face"), exact, nurbs.faces.size() - exact,
+        deviation, relative, nurbs.tolerance, outPath, model.solveMs, model.convertMs, writeMs);
+    fmt::print("sewn: {}, {}, {}{}\n", plural(report.shells, "shell"),
+               plural(report.freeEdges, "free edge"),
+               plural(report.degeneratedEdges, "degenerated edge"),
+               report.multipleEdges ? ", " + plural(report.multipleEdges, "multiple edge") : "");
+    return 0;
+  } catch (const ExportUsageError& e) {
+    fmt::print(stderr, "pdesurf: {}\n", e.what());
+    return kExitUsage;
+  }
+}
+
+}  // namespace pdesurf::cli

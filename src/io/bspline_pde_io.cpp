@@ -1,0 +1,439 @@
+// Parsing, validation and solving of "bspline-pde" model files (docs/model-format.md).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "io/model_reader.hpp"
+#include "pdesurf/bspline_pde_io.hpp"
+#include "pdesurf/model_io.hpp"
+
+namespace pdesurf {
+
+using detail::Json;
+using detail::ModelReader;
+
+namespace {
+
+/// The largest last control index a file may ask for: the Kronecker solve handles far more,
+/// but cond(M) ≈ 0.2 n³ (docs/bspline-pde.md §Accuracy) makes n > 1000 lose 9 digits.
+constexpr std::uint32_t kMaxNetIndex = 1000;
+/// The blends' dense constraint solve is O(n⁶) (docs/bspline-pde.md): n = 24 takes seconds.
+constexpr std::uint32_t kMaxBlendIndex = 24;
+
+class BSplineReader : public ModelReader {
+ public:
+  using ModelReader::ModelReader;
+
+  KnotType knotType(const Json& j, const std::string& path) const {
+    return choice<KnotType>(j, path,
+                            {{"clamped", KnotType::Clamped}, {"uniform", KnotType::Uniform}});
+  }
+
+  std::vector<Vec3> points(const Json& j, const std::string& path, std::size_t minSize) const {
+    expectArray(j, path, minSize);
+    std::vector<Vec3> out;
+    for (std::size_t k = 0; k < j.size(); ++k)
+      out.push_back(vec3(j[k], fmt::format("{}[{}]", path, k)));
+    return out;
+  }
+
+  /// {"bspline": [...], "knots": ...}: a cubic B-spline curve (at least 4 points).
+  BSplineCurve bsplineCurve(const Json& j, const std::string& path) const {
+    BSplineCurve c;
+    c.points = points(member(j, path, "bspline"), path + ".bspline", 4);
+    if (auto it = j.find("knots"); it != j.end()) c.knots = knotType(*it, path + ".knots");
+    return c;
+  }
+
+  /// A curve: {"bspline": points, "knots": ...} or {"points": samples, "t": parameters}.
+  BoundaryCurve curve(const Json& j, const std::string& path) const {
+    expectObject(j, path);
+    const bool spline = j.contains("bspline"), samples = j.contains("points");
+    if (spline == samples)
+      fail(path,
+           "a curve has either \"bspline\" (control points, optional \"knots\") or \"points\" "
+           "(samples, optional \"t\")");
+    if (spline) {
+      onlyMembers(j, path, {"bspline", "knots"});
+      return bsplineCurve(j, path);
+    }
+    onlyMembers(j, path, {"points", "t"});
+    CurveSamples s;
+    s.points = points(j["points"], path + ".points", 2);
+    if (auto it = j.find("t"); it != j.end()) {
+      const std::string tp = path + ".t";
+      expectArray(*it, tp, 0);
+      if (it->size() != s.points.size())
+        fail(tp,
+             fmt::format("expected one t per point ({}), found {}", s.points.size(), it->size()));
+      for (std::size_t k = 0; k < it->size(); ++k) {
+        const std::string kp = fmt::format("{}[{}]", tp, k);
+        s.t.push_back(number((*it)[k], kp));
+        if (k == 0 && s.t[0] != 0.0) fail(kp, fmt::format("t starts at 0, found {}", s.t[0]));
+        if (k > 0 && !(s.t[k] > s.t[k - 1]))
+          fail(kp, fmt::format("t values must increase: {} follows {}", s.t[k], s.t[k - 1]));
+      }
+      if (s.t.back() != 1.0) fail(tp, fmt::format("t ends at 1, found {}", s.t.back()));
+    }
+    return s;
+  }
+
+  /// A curve of the blends: B-spline curves only (the blend refits them).
+  BSplineCurve blendCurve(const Json& j, const std::string& path) const {
+    expectObject(j, path);
+    if (!j.contains("bspline"))
+      fail(path, "blend curves are B-spline curves: give \"bspline\" control points");
+    onlyMembers(j, path, {"bspline", "knots"});
+    BSplineCurve c = bsplineCurve(j, path);
+    if (c.knots != KnotType::Clamped)
+      fail(path + ".knots", "blend curves need clamped knots (they must interpolate their ends)");
+    return c;
+  }
+
+  /// {"points": row} or {"tangent": curve of vectors}.
+  SecondRowInput secondRow(const Json& j, const std::string& path) const {
+    expectObject(j, path);
+    if (j.contains("points") == j.contains("tangent"))
+      fail(path, "a second row has either \"points\" (its control points) or \"tangent\"");
+    if (j.contains("points")) {
+      onlyMembers(j, path, {"points"});
+      return points(j["points"], path + ".points", 1);
+    }
+    onlyMembers(j, path, {"tangent"});
+    return TangentCurve{curve(j["tangent"], path + ".tangent")};
+  }
+};
+
+void parseNet(const Json& j, const BSplineReader& rd, BSplinePdeModel& m) {
+  const std::string path = "$.net";
+  rd.expectArray(j, path, 4);
+  if (j.size() > kMaxNetIndex + 1)
+    rd.fail(path, fmt::format("{} rows: at most {}", j.size(), kMaxNetIndex + 1));
+  const auto nu = static_cast<std::uint32_t>(j.size() - 1);
+  std::uint32_t nv = 0;
+  for (std::size_t i = 0; i <= nu; ++i) {
+    const std::string rp = fmt::format("{}[{}]", path, i);
+    rd.expectArray(j[i], rp, 4);
+    if (i == 0) {
+      if (j[0].size() > kMaxNetIndex + 1)
+        rd.fail(rp, fmt::format("{} points: at most {}", j[0].size(), kMaxNetIndex + 1));
+      nv = static_cast<std::uint32_t>(j[0].size() - 1);
+      m.net = ControlNet(nu, nv, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    } else if (j[i].size() != nv + 1) {
+      rd.fail(rp, fmt::format("row {} has {} points, row 0 has {}: a net is rectangular", i,
+                              j[i].size(), nv + 1));
+    }
+    for (std::uint32_t k = 0; k <= nv; ++k) {
+      const Json& p = j[i][k];
+      const std::string pp = fmt::format("{}[{}]", rp, k);
+      if (!m.net.given(static_cast<std::uint32_t>(i), k)) {
+        if (!p.is_null()) rd.vec3(p, pp);  // checked, then ignored: the PDE decides it
+        continue;
+      }
+      if (p.is_null())
+        rd.fail(pp, fmt::format("P[{}][{}] is in row 0, 1, {} or column 0, 1, {}: the PDE needs "
+                                "it given (only inner points may be null)",
+                                i, k, nu, nv));
+      m.net(static_cast<std::uint32_t>(i), k) = rd.vec3(p, pp);
+    }
+  }
+}
+
+void parseBoundary(const Json& j, const BSplineReader& rd, BSplinePdeModel& m) {
+  const std::string path = "$.boundary";
+  rd.expectObject(j, path);
+  rd.onlyMembers(j, path, {"nu", "nv", "uMin", "uMax", "vMin", "vMax", "uMinSecond", "vMinSecond"});
+  BoundaryInput& b = m.boundary;
+  b.nu = rd.integer(rd.member(j, path, "nu"), path + ".nu", 3, kMaxNetIndex);
+  b.nv = rd.integer(rd.member(j, path, "nv"), path + ".nv", 3, kMaxNetIndex);
+  b.uMin = rd.curve(rd.member(j, path, "uMin"), path + ".uMin");
+  b.uMax = rd.curve(rd.member(j, path, "uMax"), path + ".uMax");
+  b.vMin = rd.curve(rd.member(j, path, "vMin"), path + ".vMin");
+  b.vMax = rd.curve(rd.member(j, path, "vMax"), path + ".vMax");
+  b.uMinSecond = rd.secondRow(rd.member(j, path, "uMinSecond"), path + ".uMinSecond");
+  b.vMinSecond = rd.secondRow(rd.member(j, path, "vMinSecond"), path + ".vMinSecond");
+}
+
+void parseBlend(const Json& j, const BSplineReader& rd, BSplinePdeModel& m, bool closed) {
+  const std::string path = closed ? "$[\"closed-blend\"]" : "$.blend";
+  rd.expectObject(j, path);
+  const std::initializer_list<const char*> names = {"uMin", "uMax", "vMin", "vMax"};
+  const std::initializer_list<const char*> closedNames = {"start", "end"};
+  if (closed)
+    rd.onlyMembers(j, path, {"n", "start", "end"});
+  else
+    rd.onlyMembers(j, path, {"n", "uMin", "uMax", "vMin", "vMax"});
+  m.blendN = rd.integer(rd.member(j, path, "n"), path + ".n", 3, kMaxBlendIndex);
+  for (const char* name : closed ? closedNames : names)
+    m.curves.push_back(rd.blendCurve(rd.member(j, path, name), path + "." + name));
+}
+
+/// Which part of the file an engine error belongs to.
+std::string formPath(BSplinePdeModel::Form form) {
+  switch (form) {
+    case BSplinePdeModel::Form::Net:
+      return "$.net";
+    case BSplinePdeModel::Form::Boundary:
+      return "$.boundary";
+    case BSplinePdeModel::Form::Blend:
+      return "$.blend";
+    case BSplinePdeModel::Form::ClosedBlend:
+      return "$[\"closed-blend\"]";
+  }
+  return "$";
+}
+
+}  // namespace
+
+namespace detail {
+
+BSplinePdeModel parseBSplinePdeDocument(const Json& doc, const std::string& source) {
+  const BSplineReader rd(source);
+  rd.onlyMembers(
+      doc, "$",
+      {"type", "name", "description", "knots", "net", "boundary", "blend", "closed-blend"});
+  BSplinePdeModel m;
+  rd.header(doc, m.name, m.description);
+  int forms = 0;
+  for (const char* f : {"net", "boundary", "blend", "closed-blend"}) forms += doc.contains(f);
+  if (forms != 1)
+    rd.fail("$", forms == 0
+                     ? "a bspline-pde model needs one of \"net\", \"boundary\", \"blend\" or "
+                       "\"closed-blend\""
+                     : "a bspline-pde model has only one of \"net\", \"boundary\", \"blend\" and "
+                       "\"closed-blend\"");
+  if (auto it = doc.find("knots"); it != doc.end()) {
+    if (it->is_object()) {
+      rd.onlyMembers(*it, "$.knots", {"u", "v"});
+      if (auto u = it->find("u"); u != it->end()) m.knots.uKnots = rd.knotType(*u, "$.knots.u");
+      if (auto v = it->find("v"); v != it->end()) m.knots.vKnots = rd.knotType(*v, "$.knots.v");
+    } else {
+      m.knots.uKnots = m.knots.vKnots = rd.knotType(*it, "$.knots");
+    }
+    if ((doc.contains("blend") || doc.contains("closed-blend")) &&
+        (m.knots.uKnots != KnotType::Clamped || m.knots.vKnots != KnotType::Clamped))
+      rd.fail("$.knots", "blends are made of clamped pieces (they interpolate their curves)");
+  }
+  if (auto it = doc.find("net"); it != doc.end()) {
+    m.form = BSplinePdeModel::Form::Net;
+    parseNet(*it, rd, m);
+  } else if (auto b = doc.find("boundary"); b != doc.end()) {
+    m.form = BSplinePdeModel::Form::Boundary;
+    parseBoundary(*b, rd, m);
+  } else if (auto bl = doc.find("blend"); bl != doc.end()) {
+    m.form = BSplinePdeModel::Form::Blend;
+    parseBlend(*bl, rd, m, false);
+  } else {
+    m.form = BSplinePdeModel::Form::ClosedBlend;
+    parseBlend(doc["closed-blend"], rd, m, true);
+  }
+  return m;
+}
+
+}  // namespace detail
+
+BSplineBoundary boundaryOf(const BoundaryInput& in, const BSplinePdeOptions& knots) {
+  BSplineBoundary b;
+  b.nu = in.nu;
+  b.nv = in.nv;
+  b.knots = knots;
+  b.uMin = in.uMin;
+  b.uMax = in.uMax;
+  b.vMin = in.vMin;
+  b.vMax = in.vMax;
+  const auto second = [](const SecondRowInput& row) -> SecondRow {
+    if (const auto* given = std::get_if<std::vector<Vec3>>(&row)) return *given;
+    const BoundaryCurve& c = std::get<TangentCurve>(row).vectors;
+    if (const auto* s = std::get_if<BSplineCurve>(&c))
+      return TangentFunction([s = *s](double t) { return s.evaluate(t); });
+    CurveSamples samples = std::get<CurveSamples>(c);
+    const std::size_t count = samples.points.size();
+    if (samples.t.empty())  // vectors have no chord length: uniform parameters
+      for (std::size_t k = 0; k < count; ++k)
+        samples.t.push_back(static_cast<double>(k) / static_cast<double>(count - 1));
+    return TangentFunction([s = std::move(samples)](double t) {
+      const auto k = static_cast<std::size_t>(
+          std::clamp<std::ptrdiff_t>(std::upper_bound(s.t.begin(), s.t.end(), t) - s.t.begin(), 1,
+                                     static_cast<std::ptrdiff_t>(s.t.size()) - 1));
+      const double w = (t - s.t[k - 1]) / (s.t[k] - s.t[k - 1]);
+      return Vec3((1.0 - w) * s.points[k - 1] + w * s.points[k]);
+    });
+  };
+  b.uMinSecond = second(in.uMinSecond);
+  b.vMinSecond = second(in.vMinSecond);
+  return b;
+}
+
+namespace {
+
+std::string num(double x) { return Json(x).dump(); }
+std::string pointText(const Vec3& p) {
+  return fmt::format("[{}, {}, {}]", num(p.x()), num(p.y()), num(p.z()));
+}
+std::string pointsText(const std::vector<Vec3>& points, const std::string& indent) {
+  std::string out = "[";
+  for (std::size_t k = 0; k < points.size(); ++k)
+    out += fmt::format("{}\n{}  {}", k ? "," : "", indent, pointText(points[k]));
+  return out + "\n" + indent + "]";
+}
+std::string knotText(KnotType k) { return k == KnotType::Clamped ? "\"clamped\"" : "\"uniform\""; }
+
+std::string curveText(const BoundaryCurve& c, const std::string& indent) {
+  if (const auto* s = std::get_if<BSplineCurve>(&c))
+    return fmt::format("{{\"bspline\": {}, \"knots\": {}}}", pointsText(s->points, indent),
+                       knotText(s->knots));
+  const auto& samples = std::get<CurveSamples>(c);
+  std::string out = "{\"points\": " + pointsText(samples.points, indent);
+  if (!samples.t.empty()) {
+    out += ", \"t\": [";
+    for (std::size_t k = 0; k < samples.t.size(); ++k) out += (k ? ", " : "") + num(samples.t[k]);
+    out += "]";
+  }
+  return out + "}";
+}
+
+std::string secondText(const SecondRowInput& row, const std::string& indent) {
+  if (const auto* given = std::get_if<std::vector<Vec3>>(&row))
+    return "{\"points\": " + pointsText(*given, indent) + "}";
+  return "{\"tangent\": " + curveText(std::get<TangentCurve>(row).vectors, indent) + "}";
+}
+
+}  // namespace
+
+std::string serializeModel(const BSplinePdeModel& m) {
+  std::string out = "{\n  \"type\": \"bspline-pde\"";
+  if (!m.name.empty()) out += ",\n  \"name\": " + Json(m.name).dump();
+  if (!m.description.empty()) out += ",\n  \"description\": " + Json(m.description).dump();
+  using Form = BSplinePdeModel::Form;
+  if (m.form == Form::Net || m.form == Form::Boundary)
+    out += ",\n  \"knots\": " +
+           (m.knots.uKnots == m.knots.vKnots
+                ? knotText(m.knots.uKnots)
+                : fmt::format("{{\"u\": {}, \"v\": {}}}", knotText(m.knots.uKnots),
+                              knotText(m.knots.vKnots)));
+  switch (m.form) {
+    case Form::Net: {
+      out += ",\n  \"net\": [";
+      for (std::uint32_t i = 0; i <= m.net.nu; ++i) {
+        out += i ? ",\n    [" : "\n    [";
+        for (std::uint32_t j = 0; j <= m.net.nv; ++j)
+          out += (j ? ", " : "") + (m.net.given(i, j) ? pointText(m.net(i, j)) : "null");
+        out += "]";
+      }
+      out += "\n  ]";
+      break;
+    }
+    case Form::Boundary: {
+      const BoundaryInput& b = m.boundary;
+      const std::string in = "    ";
+      out += fmt::format(
+          ",\n  \"boundary\": {{\n    \"nu\": {}, \"nv\": {},\n    \"uMin\": {},\n    \"uMax\": "
+          "{},\n    \"vMin\": {},\n    \"vMax\": {},\n    \"uMinSecond\": {},\n    "
+          "\"vMinSecond\": {}\n  }}",
+          b.nu, b.nv, curveText(b.uMin, in), curveText(b.uMax, in), curveText(b.vMin, in),
+          curveText(b.vMax, in), secondText(b.uMinSecond, in), secondText(b.vMinSecond, in));
+      break;
+    }
+    case Form::Blend:
+    case Form::ClosedBlend: {
+      const bool closed = m.form == Form::ClosedBlend;
+      const char* names[] = {"uMin", "uMax", "vMin", "vMax"};
+      const char* closedNames[] = {"start", "end"};
+      out += fmt::format(",\n  \"{}\": {{\n    \"n\": {}", closed ? "closed-blend" : "blend",
+                         m.blendN);
+      for (std::size_t k = 0; k < m.curves.size(); ++k)
+        out += fmt::format(",\n    \"{}\": {}", closed ? closedNames[k] : names[k],
+                           curveText(m.curves[k], "    "));
+      out += "\n  }";
+      break;
+    }
+  }
+  return out + "\n}\n";
+}
+
+SolvedBSplinePde solveBSplineModel(const BSplinePdeModel& m, const std::string& source) {
+  SolvedBSplinePde s;
+  try {
+    switch (m.form) {
+      case BSplinePdeModel::Form::Net:
+        s.pieces.push_back(solveBSplinePde(m.net, m.knots));
+        break;
+      case BSplinePdeModel::Form::Boundary:
+        s.pieces.push_back(solveBSplinePde(boundaryNet(boundaryOf(m.boundary, m.knots)), m.knots));
+        break;
+      case BSplinePdeModel::Form::Blend:
+      case BSplinePdeModel::Form::ClosedBlend: {
+        C1Blend blend =
+            m.form == BSplinePdeModel::Form::Blend
+                ? blendFourCurves(m.curves[0], m.curves[1], m.curves[2], m.curves[3], m.blendN)
+                : blendClosedCurves(m.curves[0], m.curves[1], m.blendN);
+        s.pieces = std::move(blend.pieces);
+        s.origin = std::move(blend.origin);
+        s.closedV = blend.closedV;
+        s.constraintResidual = blend.maxConstraintResidual;
+        s.c1Gap = blend.maxC1Gap;
+        return s;
+      }
+    }
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(source, formPath(m.form), e.what());
+  }
+  s.origin.push_back({0, 0});
+  return s;
+}
+
+Mesh tessellate(const SolvedBSplinePde& solved, std::uint32_t samples) {
+  const BSplineSurface& first = solved.pieces.front();
+  const std::uint32_t spans = std::max(first.uSpans(), first.vSpans());
+  const std::uint32_t segments = std::max(1u, (std::max(samples, 2u) - 1 + spans - 1) / spans);
+  if (solved.pieces.size() == 1 && !solved.closedV) return tessellate(first, {segments});
+
+  // One grid over the pieces' unit squares; a seam point is the first piece's.
+  std::uint32_t pu = 0, pv = 0;
+  for (const auto& o : solved.origin) {
+    pu = std::max(pu, o[0] + 1);
+    pv = std::max(pv, o[1] + 1);
+  }
+  const std::uint32_t cu = first.uSpans() * segments, cv = first.vSpans() * segments;
+  const std::uint32_t rows = pu * cu + 1, cols = pv * cv + (solved.closedV ? 0 : 1);
+  Mesh mesh;
+  mesh.positions.assign(3 * std::size_t{rows} * cols, 0.0f);
+  mesh.normals.assign(3 * std::size_t{rows} * cols, 0.0f);
+  std::vector<std::uint8_t> written(std::size_t{rows} * cols, 0);
+  for (std::size_t k = 0; k < solved.pieces.size(); ++k) {
+    const Mesh piece = tessellate(solved.pieces[k], {segments});
+    const auto [p, q] = solved.origin[k];
+    for (std::uint32_t a = 0; a <= cu; ++a)
+      for (std::uint32_t b = 0; b <= cv; ++b) {
+        const std::size_t g = std::size_t{p * cu + a} * cols + (q * cv + b) % cols;
+        if (written[g]) continue;
+        written[g] = 1;
+        const std::size_t l = std::size_t{a} * (cv + 1) + b;
+        for (int c = 0; c < 3; ++c) {
+          mesh.positions[3 * g + c] = piece.positions[3 * l + c];
+          mesh.normals[3 * g + c] = piece.normals[3 * l + c];
+        }
+      }
+  }
+  const std::uint32_t columnsOfQuads = pv * cv;
+  for (std::uint32_t a = 0; a + 1 < rows; ++a)
+    for (std::uint32_t b = 0; b < columnsOfQuads; ++b) {
+      const std::uint32_t b1 = (b + 1) % cols;
+      const std::uint32_t v00 = a * cols + b, v10 = v00 + cols;
+      const std::uint32_t v01 = a * cols + b1, v11 = v01 + cols;
+      std::uint32_t piece = 0;
+      for (std::size_t k = 0; k < solved.origin.size(); ++k)
+        if (solved.origin[k][0] == a / cu && solved.origin[k][1] == b / cv)
+          piece = static_cast<std::uint32_t>(k);
+      mesh.indices.insert(mesh.indices.end(), {v00, v10, v11, v00, v11, v01});
+      mesh.patchIds.insert(mesh.patchIds.end(), {piece, piece});
+    }
+  return mesh;
+}
+
+}  // namespace pdesurf
