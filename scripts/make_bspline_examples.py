@@ -26,10 +26,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_spectral_examples import dump  # noqa: E402  (one JSON layout for all examples)
+from make_spectral_examples import dump, write_models  # noqa: E402  (one layout, one writer)
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXAMPLES = os.path.join(ROOT, "examples")
 
 
 def given(i, j, n_u, n_v):
@@ -169,27 +167,9 @@ def dome():
 
 
 def main(argv):
-    check_only = "--check" in argv[1:]
-    stale = []
-    for model in [wave(), catenoid(), spiral(), blend(), tube(), dome()]:
-        path = os.path.join(EXAMPLES, model["name"] + ".json")
-        text = dump(model, 12) + "\n"
-        if check_only:
-            try:
-                with open(path) as f:
-                    if f.read() != text:
-                        stale.append(path)
-            except FileNotFoundError:
-                stale.append(path)
-            continue
-        with open(path, "w") as f:
-            f.write(text)
-        print("%s -> %s" % (model["name"], os.path.relpath(path, ROOT)))
-    if stale:
-        print("out of date: %s (run python3 scripts/make_bspline_examples.py)"
-              % ", ".join(os.path.relpath(p, ROOT) for p in stale))
-        return 1
-    return 0
+    models = [wave(), catenoid(), spiral(), blend(), tube(), dome()]
+    return write_models([(m, 12) for m in models], "--check" in argv[1:],
+                        "make_bspline_examples.py")
 
 
 if __name__ == "__main__":

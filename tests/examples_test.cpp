@@ -8,6 +8,7 @@
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
+#include "support/examples.hpp"
 #include "support/mesh_checks.hpp"
 
 namespace pdesurf {
@@ -15,13 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> exampleFiles() {
-  std::vector<std::string> files;
-  for (const auto& entry : fs::directory_iterator(fs::path(PDESURF_SOURCE_DIR) / "examples"))
-    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
-  std::sort(files.begin(), files.end());
-  return files;
-}
+using testing::exampleFiles;
 
 /// The examples whose model is of type T (VertexFrameModel, SpectralModel, ...).
 template <typename T>

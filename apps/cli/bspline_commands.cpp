@@ -16,20 +16,6 @@ Json pointJson(const Vec3& p) { return Json::array({p.x(), p.y(), p.z()}); }
 
 const char* knotName(KnotType k) { return k == KnotType::Clamped ? "clamped" : "uniform"; }
 
-const char* formName(BSplinePdeModel::Form f) {
-  switch (f) {
-    case BSplinePdeModel::Form::Net:
-      return "net";
-    case BSplinePdeModel::Form::Boundary:
-      return "boundary";
-    case BSplinePdeModel::Form::Blend:
-      return "blend";
-    case BSplinePdeModel::Form::ClosedBlend:
-      return "closed-blend";
-  }
-  return "?";
-}
-
 double worstResidual(const SolvedBSplinePde& solved) {
   double worst = 0.0;
   for (const BSplineSurface& s : solved.pieces) worst = std::max(worst, pdeResidual(s));

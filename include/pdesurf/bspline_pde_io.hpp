@@ -52,6 +52,9 @@ struct BSplinePdeModel {
   std::uint32_t blendN = 0;  ///< blends: the last control index of each piece
 };
 
+/// The member of the file that holds a form: "net", "boundary", "blend", "closed-blend".
+const char* formName(BSplinePdeModel::Form form);
+
 /// The model as a file (docs/model-format.md): numbers in their shortest round-trip form;
 /// parseModel of the text gives the same model.
 std::string serializeModel(const BSplinePdeModel& model);

@@ -147,6 +147,10 @@ struct SpineOffset {
   std::vector<Vec3> values, second;
 };
 
+/// The arithmetic a mode is solved and evaluated in (docs/spectral.md, "Precision"):
+/// double, x87 extended (long double) or quad (__float128), as its conditioning needs.
+enum class ModePrecision : std::uint8_t { Double, Extended, Quad };
+
 /// A solved patch: a value, evaluation is const, editing returns a new patch.
 class SpectralPatch {
  public:
@@ -166,6 +170,8 @@ class SpectralPatch {
   double uEnd() const { return uEnd_; }
   const std::vector<ResolvedCondition>& conditions() const { return conditions_; }
   bool hasRemainder() const { return tail_ != nullptr; }
+  /// The precision mode n (0..M) was solved in and is evaluated in.
+  ModePrecision precision(std::uint32_t n) const { return coefficients_.at(n).precision; }
 
   Vec3 position(double u, double v) const { return derivative(u, v, 0, 0); }
   /// S, S_u, S_v.
@@ -187,6 +193,9 @@ class SpectralPatch {
   struct ModeCoefficients {
     std::vector<long double> cosine;  ///< order × 3, row-major: An(u) = Σ_k cosine[k] φ_k
     std::vector<long double> sine;    ///< order × 3 (zero for mode 0)
+    /// Quad modes only: the quad coefficient is exactly cosine[k] + cosineLow[k].
+    std::vector<long double> cosineLow, sineLow;
+    ModePrecision precision = ModePrecision::Double;
   };
   SpectralOperator operator_;
   std::uint32_t modes_ = 0;

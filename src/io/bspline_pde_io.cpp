@@ -175,17 +175,8 @@ void parseBlend(const Json& j, const BSplineReader& rd, BSplinePdeModel& m, bool
 
 /// Which part of the file an engine error belongs to.
 std::string formPath(BSplinePdeModel::Form form) {
-  switch (form) {
-    case BSplinePdeModel::Form::Net:
-      return "$.net";
-    case BSplinePdeModel::Form::Boundary:
-      return "$.boundary";
-    case BSplinePdeModel::Form::Blend:
-      return "$.blend";
-    case BSplinePdeModel::Form::ClosedBlend:
-      return "$[\"closed-blend\"]";
-  }
-  return "$";
+  const std::string name = formName(form);
+  return name.find('-') == std::string::npos ? "$." + name : "$[\"" + name + "\"]";
 }
 
 }  // namespace
@@ -236,6 +227,20 @@ BSplinePdeModel parseBSplinePdeDocument(const Json& doc, const std::string& sour
 }
 
 }  // namespace detail
+
+const char* formName(BSplinePdeModel::Form form) {
+  switch (form) {
+    case BSplinePdeModel::Form::Net:
+      return "net";
+    case BSplinePdeModel::Form::Boundary:
+      return "boundary";
+    case BSplinePdeModel::Form::Blend:
+      return "blend";
+    case BSplinePdeModel::Form::ClosedBlend:
+      return "closed-blend";
+  }
+  return "?";
+}
 
 BSplineBoundary boundaryOf(const BoundaryInput& in, const BSplinePdeOptions& knots) {
   BSplineBoundary b;

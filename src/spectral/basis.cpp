@@ -124,6 +124,8 @@ Recurrence weightedRecurrence(double sigma, std::uint32_t count) {
   Recurrence r = computeRecurrence(sigma, count, rule->second);
   r.alphaD.assign(r.alpha.begin(), r.alpha.end());
   r.bD.assign(r.b.begin(), r.b.end());
+  r.alphaQ.assign(r.alpha.begin(), r.alpha.end());
+  r.bQ.assign(r.b.begin(), r.b.end());
   return cache.emplace(key, std::move(r)).first->second;
 }
 
@@ -140,7 +142,7 @@ namespace {
 constexpr std::uint32_t kMaxDerivatives = 130;  // orders up to 128 (N ≤ 64), plus 1
 
 /// Pascal's triangle C(j, i) for j < kMaxDerivatives, computed once.
-/// In the precision of the evaluation (T = double or Real).
+/// In the precision of the evaluation (T = double, Real or Quad).
 template <typename T>
 const std::vector<T>& binomials() {
   static const std::vector<T> table = [] {
@@ -175,6 +177,9 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
     if constexpr (std::is_same_v<T, double>) {
       alphaT = &rec.alphaD;
       bT = &rec.bD;
+    } else if constexpr (std::is_same_v<T, Quad>) {
+      alphaT = &rec.alphaQ;
+      bT = &rec.bQ;
     } else {
       alphaT = &rec.alpha;
       bT = &rec.b;
@@ -204,7 +209,8 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
     const T c = growing ? T(1) : T(0);
     const T tr = static_cast<T>(t), re = static_cast<T>(r.mu.real()),
             im = static_cast<T>(r.mu.imag());
-    const T e = std::exp(re * (tr - c));
+    using std::cos, std::exp, std::sin;  // Quad's by argument-dependent lookup
+    const T e = exp(re * (tr - c));
     if (!complexPair) {
       // Real root: E^{(j)} = μ^j E.
       T pw[kMaxDerivatives];
@@ -222,7 +228,7 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
       continue;
     }
     const std::complex<T> mu(re, im);
-    muPow[0] = std::complex<T>(e * std::cos(im * tr), e * std::sin(im * tr));
+    muPow[0] = std::complex<T>(e * cos(im * tr), e * sin(im * tr));
     for (std::uint32_t j = 1; j < jCount; ++j) muPow[j] = muPow[j - 1] * mu;
     for (std::uint32_t k = 0; k < m; ++k)
       for (std::uint32_t j = 0; j < jCount; ++j) {
@@ -240,6 +246,7 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
 
 template void ModeBasis::evaluate<SmallMatrix>(double, std::uint32_t, SmallMatrix&) const;
 template void ModeBasis::evaluate<MatrixR>(double, std::uint32_t, MatrixR&) const;
+template void ModeBasis::evaluate<MatrixQ>(double, std::uint32_t, MatrixQ&) const;
 
 RowVectorR ModeBasis::row(double t, std::uint32_t derivative) const {
   MatrixR table;

@@ -14,13 +14,15 @@
 #include <Eigen/Core>
 
 #include "pdesurf/spectral.hpp"
+#include "spectral/quad.hpp"
 
 namespace pdesurf::spectral {
 
 /// The engine computes bases, solves and mode sums in extended precision: where the
 /// growing and decaying exponentials of a mode overlap (|root| < ~3 × multiplicity) the
 /// basis is ill-conditioned (docs/spectral.md), and the 3 extra digits of x87 long double
-/// keep conditions to ~1e-11 there.
+/// keep conditions to ~1e-11 there. Modes beyond that are solved and evaluated in quad
+/// precision (Quad, quad.hpp).
 using Real = long double;
 using MatrixR = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
 using RowVectorR = Eigen::Matrix<Real, 1, Eigen::Dynamic>;
@@ -51,8 +53,11 @@ std::vector<Root> modeRoots(const SpectralOperator& op, std::uint32_t n, double 
 /// b_{k+1} p_{k+1} = (x - α_k) p_k - b_k p_{k-1}, p_0 = 1 / b_0 (discretised Stieltjes).
 struct Recurrence {
   std::vector<Real> alpha, b;  ///< b[0] = sqrt(∫ w)
-  /// The same in double, for the double evaluation path (no long-double loads per point).
+  /// The same in double, for the double evaluation path (no long-double loads per point),
+  /// and in quad for the quad path (the long-double values converted exactly: any
+  /// polynomial factor gives a solution of the mode ODE, so they need no more digits).
   std::vector<double> alphaD, bD;
+  std::vector<Quad> alphaQ, bQ;
 };
 Recurrence weightedRecurrence(double sigma, std::uint32_t count);
 
@@ -66,7 +71,8 @@ class ModeBasis {
   /// multiplicity m ≥ 2 overlap (|root| < 3m), and their near-dependence costs more than
   /// ~6 digits (m ≥ 8 or |root| < m; measured in docs/spectral.md).
   bool extended() const { return extended_ || size_ > kSmallOrder; }
-  /// out(j, k) = d^j φ_k / dt^j at t, for j = 0..maxDerivative (MatrixR or SmallMatrix).
+  /// out(j, k) = d^j φ_k / dt^j at t, for j = 0..maxDerivative (SmallMatrix, MatrixR or
+  /// MatrixQ: evaluated in that matrix's precision).
   template <class M>
   void evaluate(double t, std::uint32_t maxDerivative, M& out) const;
   /// Row of the k-th derivative only.

@@ -44,9 +44,13 @@ void evaluateGrid(const SpectralPatch& patch, std::span<const double> us,
   auto fill = [&](auto precision, std::uint32_t n) {
     using T = decltype(precision);
     const spectral::ModeBasis& basis = (*patch.bases_)[n];
-    const auto cosine = spectral::coefficients(patch.coefficients_[n].cosine).cast<T>().eval();
-    const auto sine = spectral::coefficients(patch.coefficients_[n].sine).cast<T>().eval();
-    std::conditional_t<std::is_same_v<T, double>, spectral::SmallMatrix, spectral::MatrixR> table;
+    const SpectralPatch::ModeCoefficients& coef = patch.coefficients_[n];
+    const auto cosine = spectral::coefficientMatrix<T>(coef.cosine, coef.cosineLow);
+    const auto sine = spectral::coefficientMatrix<T>(coef.sine, coef.sineLow);
+    std::conditional_t<
+        std::is_same_v<T, double>, spectral::SmallMatrix,
+        std::conditional_t<std::is_same_v<T, spectral::Quad>, spectral::MatrixQ, spectral::MatrixR>>
+        table;
     const double nd = n;
     for (std::size_t i = 0; i < nu; ++i) {
       basis.evaluate((us[i] - patch.uStart()) * inv, 1, table);
@@ -74,10 +78,17 @@ void evaluateGrid(const SpectralPatch& patch, std::span<const double> us,
     }
   };
   for (std::uint32_t n = 0; n <= modes; ++n) {
-    if ((*patch.bases_)[n].extended())
-      fill(spectral::Real(0), n);
-    else
-      fill(0.0, n);
+    switch (patch.coefficients_[n].precision) {
+      case ModePrecision::Double:
+        fill(0.0, n);
+        break;
+      case ModePrecision::Extended:
+        fill(spectral::Real(0), n);
+        break;
+      case ModePrecision::Quad:
+        fill(spectral::Quad(0), n);
+        break;
+    }
   }
   std::vector<double> sums(nv * width, 0.0);  // [j][9 i + quantity] = Σ_r trig[j][r] K[r][.]
   for (std::size_t j = 0; j < nv; ++j)
@@ -113,10 +124,8 @@ void evaluateGrid(const SpectralPatch& patch, std::span<const double> us,
         d[j * active.size() + q] = tail.difference(active[q], vs[j], 0);
         dd[j * active.size() + q] = tail.difference(active[q], vs[j], 1);
       }
-    spectral::MatrixR table;
     for (std::size_t i = 0; i < nu; ++i) {
-      tail.basis.evaluate((us[i] - patch.uStart()) * inv, 1, table);
-      const spectral::MatrixR psi = table * tail.cardinal;  // 2 × order
+      const spectral::MatrixR psi = tail.psi((us[i] - patch.uStart()) * inv, 0, 1);  // 2 × order
       for (std::size_t j = 0; j < nv; ++j)
         for (std::size_t q = 0; q < active.size(); ++q) {
           const auto k = static_cast<Eigen::Index>(active[q]);

@@ -5,6 +5,7 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -81,10 +82,32 @@ struct ConditionData {
   bool collapsed = false;  ///< all points coincide (a section collapsed to a point)
 };
 
+/// A mode's coefficients (order × 3, row-major) in precision T (double, Real or Quad; a
+/// quad mode's are the exact sums hi + lo of its two long-double vectors).
+template <typename T>
+Eigen::Matrix<T, Eigen::Dynamic, 3, Eigen::RowMajor> coefficientMatrix(
+    const std::vector<Real>& hi, const std::vector<Real>& lo) {
+  if constexpr (std::is_same_v<T, Quad>) {
+    Eigen::Matrix<T, Eigen::Dynamic, 3, Eigen::RowMajor> c(static_cast<Eigen::Index>(hi.size() / 3),
+                                                           3);
+    for (std::size_t k = 0; k < hi.size(); ++k)
+      c(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3)) =
+          lo.empty() ? Quad(hi[k]) : join(hi[k], lo[k]);
+    return c;
+  } else {
+    return coefficients(hi).template cast<T>();
+  }
+}
+
 /// R(t, v) = Σ_i ψ_i(t) d_i(v), ψ = φ_{M+1} · cardinal (ψ_i meets condition i only).
 struct SpectralTailData {
   ModeBasis basis;
-  MatrixR cardinal;                          ///< order × order
+  /// Extended, or Quad when long double cannot invert mode M+1's condition matrix.
+  ModePrecision precision = ModePrecision::Extended;
+  MatrixR cardinal;   ///< order × order (Extended)
+  MatrixQ cardinalQ;  ///< order × order (Quad)
+  /// Rows first..last of the t-derivatives of ψ at t, in the tail's precision.
+  MatrixR psi(double t, std::uint32_t first, std::uint32_t last) const;
   std::vector<std::vector<TailTerm>> terms;  ///< per condition, u-space
   std::vector<double> scale;                 ///< per condition: length^{k_i} (u → t space)
   /// d_i^{(k)}(v) in t-space.

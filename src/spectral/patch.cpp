@@ -57,7 +57,8 @@ ModeSystem<M> factorMode(const spectral::ModeBasis& basis,
     const T m = c.row(i).cwiseAbs().maxCoeff();
     // Rows of derivative conditions scale like |root|^k and rows at interior u like
     // e^{-|root| dist}: equilibrate so that QR sees rows of comparable size.
-    sys.rowScale(i) = m > T(0) && std::isfinite(m) ? T(1) / m : T(1);
+    using std::isfinite;  // Quad's by argument-dependent lookup
+    sys.rowScale(i) = m > T(0) && isfinite(m) ? T(1) / m : T(1);
     c.row(i) *= sys.rowScale(i);
   }
   sys.qr.compute(c);
@@ -77,26 +78,33 @@ ModeSystem<M> factorMode(const spectral::ModeBasis& basis,
 
 /// Relative residual of a mode's solve above which the system counts as singular (a
 /// resonance of an oscillatory basis, e.g. Fu with a < 0, or a basis too ill-conditioned
-/// for the precision): far above the ≤ 1e-12 reached by solvable systems (docs/spectral.md).
+/// even for quad precision): far above the ≤ 1e-12 reached by solvable systems
+/// (docs/spectral.md).
 constexpr double kModeResidualLimit = 1e-6;
 
+/// Relative residual above which a mode is solved again in the next precision (double →
+/// long double → quad): two orders below the 1e-9 the conditions must meet, and far above
+/// the ~1e-15 of a well-conditioned double solve. Deterministic: the same data take the
+/// same path.
+constexpr double kEscalateResidual = 1e-11;
+
+/// max |matrix · x − rhs| / max |rhs| (NaN when the solve produced non-finite values).
 template <class M>
-void checkSolution(const ModeSystem<M>& sys, const M& rhs, const M& x, std::uint32_t n) {
+double relativeResidual(const M& matrix, const M& rhs, const M& x) {
   using T = typename M::Scalar;
-  const M r = sys.matrix.lazyProduct(x) - rhs;
+  const M r = matrix.lazyProduct(x) - rhs;
   const T scale = rhs.cwiseAbs().maxCoeff();
-  if (!(r.cwiseAbs().maxCoeff() <=
-        static_cast<T>(kModeResidualLimit) * (scale > T(0) ? scale : T(1))))
-    throw std::invalid_argument("the conditions do not determine mode " + std::to_string(n) +
-                                " (its system is singular or too ill-conditioned; see "
-                                "docs/spectral.md)");
+  const T res = r.cwiseAbs().maxCoeff() / (scale > T(0) ? scale : T(1));
+  using std::isfinite;
+  return isfinite(res) ? static_cast<double>(res) : std::numeric_limits<double>::quiet_NaN();
 }
 
-/// Coefficients of mode n (order × 6: cos x,y,z then sin x,y,z) in precision T.
+/// Solves mode n in precision T into `coef` (order × 3 cosine and sine coefficients; a quad
+/// solution split into hi + lo) and returns the relative residual of its system.
 template <class M>
-spectral::MatrixR solveMode(const spectral::ModeBasis& basis,
-                            const std::vector<spectral::ConditionData>& conditions, double uStart,
-                            double length, std::uint32_t n) {
+double solveMode(const spectral::ModeBasis& basis,
+                 const std::vector<spectral::ConditionData>& conditions, double uStart,
+                 double length, std::uint32_t n, SpectralPatch::ModeCoefficients& coef) {
   using T = typename M::Scalar;
   const ModeSystem<M> sys = factorMode<M>(basis, conditions, uStart, length, n);
   const auto order = static_cast<Eigen::Index>(basis.size());
@@ -113,8 +121,83 @@ spectral::MatrixR solveMode(const spectral::ModeBasis& basis,
     }
   }
   const M x = sys.qr.solve(rhs);
-  checkSolution<M>(sys, rhs, x, n);
-  return x.template cast<spectral::Real>();
+  const auto size = static_cast<std::size_t>(order);
+  coef.cosine.resize(3 * size);
+  coef.sine.resize(3 * size);
+  if constexpr (std::is_same_v<T, spectral::Quad>) {
+    coef.cosineLow.resize(3 * size);
+    coef.sineLow.resize(3 * size);
+  } else {
+    coef.cosineLow.clear();
+    coef.sineLow.clear();
+  }
+  for (std::size_t k = 0; k < size; ++k)
+    for (std::size_t d = 0; d < 3; ++d) {
+      const auto row = static_cast<Eigen::Index>(k), col = static_cast<Eigen::Index>(d);
+      if constexpr (std::is_same_v<T, spectral::Quad>) {
+        spectral::split(x(row, col), coef.cosine[3 * k + d], coef.cosineLow[3 * k + d]);
+        spectral::split(x(row, 3 + col), coef.sine[3 * k + d], coef.sineLow[3 * k + d]);
+      } else {
+        coef.cosine[3 * k + d] = static_cast<spectral::Real>(x(row, col));
+        coef.sine[3 * k + d] = static_cast<spectral::Real>(x(row, 3 + col));
+      }
+    }
+  return relativeResidual<M>(sys.matrix, rhs, x);
+}
+
+/// Solves mode n in the precision its basis suggests (ModeBasis::extended), then in the next
+/// precision while the residual exceeds kEscalateResidual; refuses the mode if even quad
+/// leaves it above kModeResidualLimit.
+void solveModeTiered(const spectral::ModeBasis& basis,
+                     const std::vector<spectral::ConditionData>& conditions, double uStart,
+                     double length, std::uint32_t n, SpectralPatch::ModeCoefficients& coef) {
+  ModePrecision tier = basis.extended() ? ModePrecision::Extended : ModePrecision::Double;
+  for (;;) {
+    double residual = 0.0;
+    switch (tier) {
+      case ModePrecision::Double:
+        residual = solveMode<spectral::SmallMatrix>(basis, conditions, uStart, length, n, coef);
+        break;
+      case ModePrecision::Extended:
+        residual = solveMode<spectral::MatrixR>(basis, conditions, uStart, length, n, coef);
+        break;
+      case ModePrecision::Quad:
+        residual = solveMode<spectral::MatrixQ>(basis, conditions, uStart, length, n, coef);
+        break;
+    }
+    coef.precision = tier;
+    if (residual <= kEscalateResidual) return;
+    if (tier == ModePrecision::Quad) {
+      if (residual <= kModeResidualLimit) return;  // the best there is, and still sound
+      throw std::invalid_argument("the conditions do not determine mode " + std::to_string(n) +
+                                  " (its system is singular or too ill-conditioned; see "
+                                  "docs/spectral.md)");
+    }
+    tier = tier == ModePrecision::Double ? ModePrecision::Extended : ModePrecision::Quad;
+  }
+}
+
+/// The ku-th t-derivative of mode n's cosine and sine functions (An, Bn) at t, in the mode's
+/// precision (long double for double and extended modes, as the single-point evaluations
+/// always were; quad for quad modes). `table` is scratch space.
+void modeAt(const spectral::ModeBasis& basis, const SpectralPatch::ModeCoefficients& coef, double t,
+            std::uint32_t ku, spectral::MatrixR& table, Vec3& a, Vec3* b) {
+  if (coef.precision == ModePrecision::Quad) {
+    using spectral::Quad;
+    spectral::MatrixQ tableQ;
+    basis.evaluate(t, ku, tableQ);
+    a = (tableQ.row(ku) * spectral::coefficientMatrix<Quad>(coef.cosine, coef.cosineLow))
+            .transpose()
+            .cast<double>();
+    if (b)
+      *b = (tableQ.row(ku) * spectral::coefficientMatrix<Quad>(coef.sine, coef.sineLow))
+               .transpose()
+               .cast<double>();
+    return;
+  }
+  basis.evaluate(t, ku, table);
+  a = (table.row(ku) * spectral::coefficients(coef.cosine)).transpose().cast<double>();
+  if (b) *b = (table.row(ku) * spectral::coefficients(coef.sine)).transpose().cast<double>();
 }
 
 }  // namespace
@@ -162,25 +245,12 @@ SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, dou
   patch.uStart_ = uStart;
   patch.uEnd_ = uEnd;
   const double length = uEnd - uStart;
-  const std::size_t order = op.order();
   patch.coefficients_.resize(modes + 1);
   auto bases = std::make_shared<std::vector<ModeBasis>>();
   for (std::uint32_t n = 0; n <= modes; ++n) bases->emplace_back(modeRoots(op, n, length));
   patch.bases_ = bases;
-  for (std::uint32_t n = 0; n <= modes; ++n) {
-    const ModeBasis& basis = (*bases)[n];
-    const MatrixR x = basis.extended()
-                          ? solveMode<MatrixR>(basis, conditions, uStart, length, n)
-                          : solveMode<SmallMatrix>(basis, conditions, uStart, length, n);
-    auto& coef = patch.coefficients_[n];
-    coef.cosine.resize(3 * order);
-    coef.sine.resize(3 * order);
-    for (std::size_t k = 0; k < order; ++k)
-      for (int d = 0; d < 3; ++d) {
-        coef.cosine[3 * k + d] = x(static_cast<Eigen::Index>(k), d);
-        coef.sine[3 * k + d] = x(static_cast<Eigen::Index>(k), 3 + d);
-      }
-  }
+  for (std::uint32_t n = 0; n <= modes; ++n)
+    solveModeTiered((*bases)[n], conditions, uStart, length, n, patch.coefficients_[n]);
   const bool anyTail = std::any_of(conditions.begin(), conditions.end(),
                                    [](const ConditionData& c) { return !c.tail.empty(); });
   if (anyTail) {
@@ -191,6 +261,28 @@ SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, dou
     const auto sys = factorMode<MatrixR>(tail->basis, conditions, uStart, length, modes + 1);
     const MatrixR scale = sys.rowScale.asDiagonal();
     tail->cardinal = sys.qr.solve(scale);
+    // The cardinal matrix is C⁻¹ (scale⁻¹ · scale): L_j ψ_i − δ_ij is row j of the
+    // equilibrated residual over its row scale. Redone in quad where long double leaves it
+    // above kEscalateResidual (mode M+1 ill-conditioned, e.g. M = 0 at high order).
+    auto cardinalError = [](const auto& s, const auto& x, const auto& d) {
+      using T = typename std::decay_t<decltype(x)>::Scalar;
+      T worst = T(0);
+      for (Eigen::Index j = 0; j < x.rows(); ++j) {
+        const T e = (s.matrix.row(j) * x - d.row(j)).cwiseAbs().maxCoeff() / s.rowScale(j);
+        if (!(e <= worst)) {
+          worst = e;
+          if (!(e == e)) break;  // NaN: stop here
+        }
+      }
+      return static_cast<double>(worst);
+    };
+    if (!(cardinalError(sys, tail->cardinal, scale) <= kEscalateResidual)) {
+      const auto quad = factorMode<MatrixQ>(tail->basis, conditions, uStart, length, modes + 1);
+      const MatrixQ scaleQ = quad.rowScale.asDiagonal();
+      tail->cardinalQ = quad.qr.solve(scaleQ);
+      tail->cardinal.resize(0, 0);
+      tail->precision = ModePrecision::Quad;
+    }
     for (const ConditionData& c : conditions) {
       tail->terms.push_back(c.tail);
       tail->scale.push_back(std::pow(length, static_cast<double>(c.derivative)));
@@ -209,6 +301,18 @@ SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, dou
   return patch;
 }
 
+MatrixR SpectralTailData::psi(double t, std::uint32_t first, std::uint32_t last) const {
+  const auto rows = static_cast<Eigen::Index>(last - first + 1);
+  if (precision == ModePrecision::Quad) {
+    MatrixQ table;
+    basis.evaluate(t, last, table);
+    return (table.middleRows(first, rows) * cardinalQ).cast<Real>();
+  }
+  MatrixR table;
+  basis.evaluate(t, last, table);
+  return table.middleRows(first, rows) * cardinal;
+}
+
 ConditionData derivativeCondition(const SpectralPatch& patch, double t, std::uint32_t k) {
   ConditionData c;
   c.derivative = k;
@@ -217,14 +321,12 @@ ConditionData derivativeCondition(const SpectralPatch& patch, double t, std::uin
   c.fourier.a.assign(modes, Vec3::Zero());
   c.fourier.b.assign(modes, Vec3::Zero());
   const double scale = std::pow(length, -static_cast<double>(k));  // t → u derivatives
+  MatrixR table;
   for (std::uint32_t n = 0; n <= modes; ++n) {
-    const RowVectorR row = (*patch.bases_)[n].row(t, k);
-    const Vec3 a =
-        scale *
-        (row * spectral::coefficients(patch.coefficients_[n].cosine)).transpose().cast<double>();
-    const Vec3 b =
-        scale *
-        (row * spectral::coefficients(patch.coefficients_[n].sine)).transpose().cast<double>();
+    Vec3 a, b;
+    modeAt((*patch.bases_)[n], patch.coefficients_[n], t, k, table, a, &b);
+    a *= scale;
+    b *= scale;
     if (n == 0) {
       c.fourier.a0 = a;
     } else {
@@ -236,11 +338,12 @@ ConditionData derivativeCondition(const SpectralPatch& patch, double t, std::uin
     c.fourier.a0 += evaluateNaturalSpline(s, patch.uStart() + t * length, k);
   if (patch.tail_) {
     const SpectralTailData& tail = *patch.tail_;
-    const RowVectorR psi = tail.basis.row(t, k) * tail.cardinal;
+    const MatrixR psi = tail.psi(t, k, k);
     for (std::size_t i = 0; i < tail.terms.size(); ++i)
       for (const TailTerm& term : tail.terms[i]) {
         TailTerm w = term;
-        w.weight *= static_cast<double>(psi(static_cast<Eigen::Index>(i))) * tail.scale[i] * scale;
+        w.weight *=
+            static_cast<double>(psi(0, static_cast<Eigen::Index>(i))) * tail.scale[i] * scale;
         if (w.weight != 0.0) c.tail.push_back(std::move(w));
       }
   }
@@ -256,25 +359,22 @@ Vec3 SpectralPatch::derivative(double u, double v, std::uint32_t ku, std::uint32
   spectral::MatrixR table;
   for (std::uint32_t n = 0; n <= modes_; ++n) {
     if (n == 0 && kv > 0) continue;
-    (*bases_)[n].evaluate(t, ku, table);
-    const Vec3 a = (table.row(ku) * spectral::coefficients(coefficients_[n].cosine))
-                       .transpose()
-                       .cast<double>();
+    Vec3 a, b;
+    modeAt((*bases_)[n], coefficients_[n], t, ku, table, a, n == 0 ? nullptr : &b);
     if (n == 0) {
       x += a;
       continue;
     }
-    const Vec3 b =
-        (table.row(ku) * spectral::coefficients(coefficients_[n].sine)).transpose().cast<double>();
     double c, s;
     trig(n, v, kv, c, s);
     x += a * c + b * s;
   }
   if (tail_) {
-    const spectral::RowVectorR psi = tail_->basis.row(t, ku) * tail_->cardinal;
+    const spectral::MatrixR psi = tail_->psi(t, ku, ku);
     for (std::size_t i = 0; i < tail_->terms.size(); ++i)
       if (!tail_->terms[i].empty())
-        x += static_cast<double>(psi(static_cast<Eigen::Index>(i))) * tail_->difference(i, v, kv);
+        x +=
+            static_cast<double>(psi(0, static_cast<Eigen::Index>(i))) * tail_->difference(i, v, kv);
   }
   x *= std::pow(length, -static_cast<double>(ku));
   if (kv == 0)
@@ -296,11 +396,10 @@ Vec3 SpectralPatch::conditionTarget(std::size_t i, double v) const {
 
 Vec3 SpectralPatch::spine(double u, std::uint32_t k) const {
   const double length = uEnd_ - uStart_;
-  Vec3 x =
-      std::pow(length, -static_cast<double>(k)) * ((*bases_)[0].row((u - uStart_) / length, k) *
-                                                   spectral::coefficients(coefficients_[0].cosine))
-                                                      .transpose()
-                                                      .cast<double>();
+  spectral::MatrixR table;
+  Vec3 x;
+  modeAt((*bases_)[0], coefficients_[0], (u - uStart_) / length, k, table, x, nullptr);
+  x *= std::pow(length, -static_cast<double>(k));
   for (const SpineOffset& s : spineOffsets_) x += spectral::evaluateNaturalSpline(s, u, k);
   return x;
 }

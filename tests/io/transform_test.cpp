@@ -16,6 +16,7 @@
 #include "pdesurf/session.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "pdesurf/transform.hpp"
+#include "support/examples.hpp"
 #include "support/models.hpp"
 
 namespace pdesurf {
@@ -47,13 +48,7 @@ AffineMap general() {
   return m;
 }
 
-std::vector<std::string> exampleFiles() {
-  std::vector<std::string> files;
-  for (const auto& entry : fs::directory_iterator(fs::path(PDESURF_SOURCE_DIR) / "examples"))
-    if (entry.path().extension() == ".json") files.push_back(entry.path().string());
-  std::sort(files.begin(), files.end());
-  return files;
-}
+using testing::exampleFiles;
 
 bool isotropic(const VertexFrameModel& m) {
   return std::all_of(m.frames.begin(), m.frames.end(), [](const Frame& f) {

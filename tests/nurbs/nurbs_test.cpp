@@ -12,6 +12,7 @@
 #include "pdesurf/nurbs.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
+#include "support/examples.hpp"
 #include "support/models.hpp"
 
 namespace pdesurf {
@@ -23,9 +24,7 @@ constexpr double kRoundingTolerance = 1e-12;
 /// Random (u, v) per patch for the independent checks.
 constexpr int kRandomSamples = 400;
 
-std::string example(const std::string& name) {
-  return (std::filesystem::path(PDESURF_SOURCE_DIR) / "examples" / name).string();
-}
+using testing::example;
 
 VertexFramePatch randomPatch(std::mt19937& rng) {
   std::uniform_real_distribution<double> coef(-2.0, 2.0);
@@ -220,15 +219,7 @@ class SpectralExport : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SpectralExport, ApproximatedWithinToleranceAndClosedAroundV) {
   const std::string path = example(GetParam());
-  const SolvedSpectral solved = std::visit(
-      [&](const auto& m) -> SolvedSpectral {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, SpectralModel> || std::is_same_v<T, CrossSectionModel>)
-          return solveSpectralModel(m, path);
-        else
-          throw std::logic_error("not a spectral example");
-      },
-      loadModel(path));
+  const SolvedSpectral solved = testing::solveSpectralFile(path);
   const NurbsModel model = toNurbs(solved);
   ASSERT_EQ(model.faces.size(), solved.patchCount());
   std::mt19937 rng(9);

@@ -27,6 +27,7 @@
 #include "pdesurf/occt_convert.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "support/cli_run.hpp"
+#include "support/examples.hpp"
 #include "support/models.hpp"
 
 namespace pdesurf {
@@ -35,9 +36,7 @@ namespace {
 /// Samples per side of the grid each read-back face is compared on.
 constexpr int kGrid = 13;
 
-std::string example(const std::string& name) {
-  return (std::filesystem::path(PDESURF_SOURCE_DIR) / "examples" / name).string();
-}
+using testing::example;
 
 Vec3 toVec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 
@@ -132,17 +131,7 @@ std::vector<Patch> patchesOf(const SolvedSpectral& solved) {
   return out;
 }
 
-SolvedSpectral solveSpectralFile(const std::string& path) {
-  return std::visit(
-      [&](const auto& m) -> SolvedSpectral {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, SpectralModel> || std::is_same_v<T, CrossSectionModel>)
-          return solveSpectralModel(m, path);
-        else
-          throw std::logic_error("not a spectral example");
-      },
-      loadModel(path));
-}
+using testing::solveSpectralFile;
 
 class RoundTrip : public ::testing::TestWithParam<CadFormat> {
  protected:
