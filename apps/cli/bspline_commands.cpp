@@ -90,6 +90,10 @@ std::string bsplineInfoText(const BSplinePdeModel& model, const SolvedBSplinePde
         {"pde_residual", residual}};
     if (solved.c1Gap) {
       j["c1_gap_relative"] = *solved.c1Gap;
+      Json seams = Json::array();
+      for (const auto& [where, gap] : solved.seamGaps)
+        seams.push_back({{"seam", where}, {"c1_gap_relative", gap}});
+      j["seams"] = std::move(seams);
       j["constraint_residual_relative"] = *solved.constraintResidual;
       j["closed"] = solved.closedV;
     }
@@ -103,9 +107,13 @@ std::string bsplineInfoText(const BSplinePdeModel& model, const SolvedBSplinePde
                      solved.closedV ? " (closed in v)" : "", first.net().nu + 1, first.net().nv + 1,
                      solved.pieces.size() == 1 ? "" : " each", knotsText(first));
   out += fmt::format("PDE        largest |x_uuuvvv| {:.3g} (relative to its terms)\n", residual);
-  if (solved.c1Gap)
-    out += fmt::format("seams      C1 gap {:.3g} (relative), constraint residual {:.3g}\n",
-                       *solved.c1Gap, *solved.constraintResidual);
+  if (solved.c1Gap) {
+    std::string perSeam;
+    for (const auto& [where, gap] : solved.seamGaps)
+      perSeam += fmt::format("{}{}: {:.3g}", perSeam.empty() ? "" : ", ", where, gap);
+    out += fmt::format("seams      C1 gap {:.3g} (relative; {}), constraint residual {:.3g}\n",
+                       *solved.c1Gap, perSeam, *solved.constraintResidual);
+  }
   out += fmt::format("bbox       [{}, {}, {}] to [{}, {}, {}]\n", lo.x(), lo.y(), lo.z(), hi.x(),
                      hi.y(), hi.z());
   return out;

@@ -9,6 +9,8 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -233,6 +235,9 @@ struct C1Blend {
   /// max |mask or C1 equation| (rows scaled to a largest coefficient of 1) / extent
   double maxConstraintResidual = 0.0;
   double maxC1Gap = 0.0;  ///< max |∂x/∂U (or ∂V) left − right| over the seams / max |∂x|
+  /// The same per seam: "U = 1", "V = 1" (Example 4); "V = 1", "V = 0" (Example 5, where
+  /// V = 0 is V = 2).
+  std::vector<std::pair<std::string, double>> seamGaps;
 };
 
 /// Example 4. The four curves of a 4-sided region on [0, 2]² (each clamped, any point count;

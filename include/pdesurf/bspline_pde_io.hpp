@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -67,6 +68,7 @@ struct SolvedBSplinePde {
   bool closedV = false;  ///< the closed blend: V = 2 is V = 0
   /// Blends: the measured constraint residual and C1 gap (C1Blend); nothing for one surface.
   std::optional<double> constraintResidual, c1Gap;
+  std::vector<std::pair<std::string, double>> seamGaps;  ///< blends: C1Blend::seamGaps
 };
 
 /// Solves a parsed model. The engine's refusals (corners that do not meet, too few samples,

@@ -276,8 +276,9 @@ C1Blend blendFourCurves(const BSplineCurve& uMin, const BSplineCurve& uMax,
       blend.origin.push_back({p, q});
     }
   // ∂/∂U across U = 1 and ∂/∂V across V = 1 (unit spans: local = global derivatives).
-  blend.maxC1Gap =
-      measureC1Gap(blend.pieces, {{0, 2, true}, {1, 3, true}, {0, 1, false}, {2, 3, false}});
+  blend.seamGaps = {{"U = 1", measureC1Gap(blend.pieces, {{0, 2, true}, {1, 3, true}})},
+                    {"V = 1", measureC1Gap(blend.pieces, {{0, 1, false}, {2, 3, false}})}};
+  blend.maxC1Gap = std::max(blend.seamGaps[0].second, blend.seamGaps[1].second);
   return blend;
 }
 
@@ -326,7 +327,9 @@ C1Blend blendClosedCurves(const BSplineCurve& start, const BSplineCurve& end, st
     blend.pieces.push_back(sys.piece(0, static_cast<int>(q) * ni, n));
     blend.origin.push_back({0, q});
   }
-  blend.maxC1Gap = measureC1Gap(blend.pieces, {{0, 1, false}, {1, 0, false}});
+  blend.seamGaps = {{"V = 1", measureC1Gap(blend.pieces, {{0, 1, false}})},
+                    {"V = 0", measureC1Gap(blend.pieces, {{1, 0, false}})}};
+  blend.maxC1Gap = std::max(blend.seamGaps[0].second, blend.seamGaps[1].second);
   return blend;
 }
 

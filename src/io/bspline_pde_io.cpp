@@ -382,6 +382,7 @@ SolvedBSplinePde solveBSplineModel(const BSplinePdeModel& m, const std::string& 
         s.closedV = blend.closedV;
         s.constraintResidual = blend.maxConstraintResidual;
         s.c1Gap = blend.maxC1Gap;
+        s.seamGaps = std::move(blend.seamGaps);
         return s;
       }
     }

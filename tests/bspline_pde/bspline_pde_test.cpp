@@ -690,6 +690,10 @@ TEST(BSplineBlend, FourPiecesAreC1AndSolveThePde) {
     const C1Blend blend = blendFourCurves(uMin, uMax, vMin, vMax, n);
     EXPECT_LT(blend.maxConstraintResidual, kBlendTolerance) << n;
     EXPECT_LT(blend.maxC1Gap, kBlendTolerance) << n;
+    ASSERT_EQ(blend.seamGaps.size(), 2u);  // every seam measured and reported
+    EXPECT_EQ(blend.seamGaps[0].first, "U = 1");
+    EXPECT_EQ(blend.seamGaps[1].first, "V = 1");
+    for (const auto& [where, gap] : blend.seamGaps) EXPECT_LE(gap, blend.maxC1Gap) << where;
     char gap[32];
     std::snprintf(gap, sizeof gap, "%.3e", blend.maxC1Gap);
     RecordProperty("c1_gap_n" + std::to_string(n), gap);
@@ -744,6 +748,9 @@ TEST(BSplineBlend, ClosedTubeIsC1AllAround) {
     start.points[0] = start.points[last] = 0.5 * (start.points[1] + start.points[last - 1]);
     const C1Blend blend = blendClosedCurves(start, end, n);
     ASSERT_EQ(blend.pieces.size(), 2u);
+    ASSERT_EQ(blend.seamGaps.size(), 2u);
+    EXPECT_EQ(blend.seamGaps[1].first, "V = 0");
+    EXPECT_LT(blend.seamGaps[1].second, kBlendTolerance) << n;  // the wrap seam too
     EXPECT_TRUE(blend.closedV);
     EXPECT_LT(blend.maxConstraintResidual, kBlendTolerance) << n;
     EXPECT_LT(blend.maxC1Gap, kBlendTolerance) << n;

@@ -70,6 +70,9 @@ TEST_F(CliBSpline, BuildsSamplesAndReportsABlend) {
   EXPECT_EQ(ij["pieces"], 4);
   EXPECT_LT(ij["pde_residual"].get<double>(), 1e-12);
   EXPECT_LT(ij["c1_gap_relative"].get<double>(), 1e-9);
+  ASSERT_EQ(ij["seams"].size(), 2u);
+  EXPECT_EQ(ij["seams"][0]["seam"], "U = 1");
+  EXPECT_LT(ij["seams"][1]["c1_gap_relative"].get<double>(), 1e-9);
   EXPECT_EQ(ij["control_points"][0], 7);
 }
 
