@@ -11,6 +11,7 @@ test('the page loads the model and its mesh', async ({ page, studio }) => {
   await expect(page.getByTestId('status')).toContainText('8 vertices');
   await expect(page.getByTestId('status')).toContainText(/solve [\d.]+ ms/);
   await expect(page.getByTestId('model-path')).toHaveText('sculpt.json');
+  await expect(page.getByTestId('frame-tools')).toBeVisible();
   await expect(page.getByTestId('error')).toHaveText('');
   await page.screenshot({ path: shot('loaded.png') });
 });
@@ -258,6 +259,7 @@ test.describe('a spectral model', () => {
     await expect(page.getByTestId('status')).toContainText('triangles');
     expect((await studio.state()).editable).toBe(false);
     await expect(page.getByTestId('frame-caption')).toHaveText('Curves and spine (view only)');
+    await expect(page.getByTestId('frame-tools')).toBeHidden();
     await page.waitForTimeout(300);
     await page.screenshot({ path: shot('shell.png') });
     const error = await page.evaluate(() =>
@@ -353,6 +355,7 @@ test.describe('a B-spline PDE model', () => {
     await openStudio(page, studio);
     await expect(page.getByTestId('status')).toContainText('bspline-pde model: view only');
     await expect(page.getByTestId('frame-caption')).toHaveText('Control nets (view only)');
+    await expect(page.getByTestId('frame-tools')).toBeHidden();  // no vertices, frames, forces
     await meshUpToDate(page);
     expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
     const box = () => page.evaluate(() => (window as any).__studio.meshBox());

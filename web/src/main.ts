@@ -675,6 +675,8 @@ $('add-force').addEventListener('click', () => {
 });
 
 function renderPanel(): void {
+  // Vertex, frame and force tools only mean something for a vertex-frame model.
+  $('frame-tools').hidden = state.viewOnly !== '';
   renderVertexInputs();
   const frames = selectedFrameList();
   $('frame-selection').textContent = frames.length ? frames.map((f) => `#${f}`).join(' ') : 'none';
