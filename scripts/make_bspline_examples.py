@@ -26,7 +26,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_spectral_examples import dump, write_models  # noqa: E402  (one layout, one writer)
+from make_examples import write_models  # noqa: E402  (one writer for every generator)
+from make_spectral_examples import dump  # noqa: E402  (one JSON layout)
 
 
 
@@ -168,7 +169,7 @@ def dome():
 
 def main(argv):
     models = [wave(), catenoid(), spiral(), blend(), tube(), dome()]
-    return write_models([(m, 12) for m in models], "--check" in argv[1:],
+    return write_models([(m["name"], dump(m, 12) + "\n") for m in models], "--check" in argv[1:],
                         "make_bspline_examples.py")
 
 

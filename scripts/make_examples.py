@@ -631,14 +631,13 @@ def grid_forces():
 MODELS = [mug, basket, vase, hat, dress, sculpt, grid_forces]
 
 
-def main(argv):
-    check_only = "--check" in argv[1:]
+def write_models(named_texts, check_only, script):
+    """Writes each (name, text) to examples/NAME.json, or with check_only compares the files
+    with what would be written; returns the exit status (1: some file is stale). Shared by
+    every example generator."""
     stale = []
-    for make in MODELS:
-        model = make()
-        print(check(model))
-        path = os.path.join(EXAMPLES, model.name + ".json")
-        text = model.json_text()
+    for name, text in named_texts:
+        path = os.path.join(EXAMPLES, name + ".json")
         if check_only:
             try:
                 with open(path) as f:
@@ -650,10 +649,21 @@ def main(argv):
         os.makedirs(EXAMPLES, exist_ok=True)
         with open(path, "w") as f:
             f.write(text)
+        print("%s -> %s" % (name, os.path.relpath(path, ROOT)))
     if stale:
-        print("out of date: %s (run python3 scripts/make_examples.py)" % ", ".join(stale))
+        print("out of date: %s (run python3 scripts/%s)"
+              % (", ".join(os.path.relpath(p, ROOT) for p in stale), script))
         return 1
     return 0
+
+
+def main(argv):
+    named_texts = []
+    for make in MODELS:
+        model = make()
+        print(check(model))
+        named_texts.append((model.name, model.json_text()))
+    return write_models(named_texts, "--check" in argv[1:], "make_examples.py")
 
 
 if __name__ == "__main__":

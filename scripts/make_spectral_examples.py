@@ -30,8 +30,10 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from make_examples import write_models  # noqa: E402  (one writer for every generator)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXAMPLES = os.path.join(ROOT, "examples")
 TWO_PI = 2.0 * math.pi
 
 
@@ -602,32 +604,8 @@ def main(argv):
 
     models = [(shell(), 12), (klein_bottle(), 12), (membrane(), 12), (vase_sections(), 8)]
     models += [(m, 7) for m in elephant_models(cli, regions, check_only)]
-    return write_models(models, check_only, "make_spectral_examples.py")
-
-
-def write_models(models, check_only, script):
-    """Writes each (model, digits) to examples/NAME.json, or with check_only compares the
-    files with what would be written; returns the exit status (1: some file is stale)."""
-    stale = []
-    for model, digits in models:
-        path = os.path.join(EXAMPLES, model["name"] + ".json")
-        text = dump(model, digits) + "\n"
-        if check_only:
-            try:
-                with open(path) as f:
-                    if f.read() != text:
-                        stale.append(path)
-            except FileNotFoundError:
-                stale.append(path)
-            continue
-        with open(path, "w") as f:
-            f.write(text)
-        print("%s -> %s" % (model["name"], os.path.relpath(path, ROOT)))
-    if stale:
-        print("out of date: %s (run python3 scripts/%s)"
-              % (", ".join(os.path.relpath(p, ROOT) for p in stale), script))
-        return 1
-    return 0
+    return write_models([(m["name"], dump(m, digits) + "\n") for m, digits in models],
+                        check_only, "make_spectral_examples.py")
 
 
 if __name__ == "__main__":

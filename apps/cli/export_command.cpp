@@ -1,15 +1,15 @@
 #include "export_command.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <iostream>
+#include <span>
 #include <stdexcept>
-#include <type_traits>
 #include <variant>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_common.hpp"
 #include "pdesurf/cad_export.hpp"
 #include "pdesurf/nurbs.hpp"
 #include "pdesurf/spectral_io.hpp"
@@ -19,29 +19,12 @@ namespace pdesurf::cli {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
-
-constexpr int kExitUsage = 2;
 
 /// A well-formed argument that cannot be used (exit 2).
 struct ExportUsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-std::string displayName(const std::string& name, const std::string& path) {
-  if (!name.empty()) return name;
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-std::string plural(std::size_t n, const std::string& noun) {
-  return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
-}
 
 struct Converted {
   std::string name;
@@ -52,34 +35,25 @@ struct Converted {
 Converted convert(const std::string& path, const NurbsExportOptions& options) {
   const AnyModel any = loadModel(path);
   Converted out;
-  std::visit(
-      [&](const auto& model) {
-        using T = std::decay_t<decltype(model)>;
-        auto t0 = Clock::now();
-        if constexpr (std::is_same_v<T, VertexFrameModel>) {
-          out.name = displayName(model.name, path);
-          const VertexFrameSurface surface = solve(model);
-          out.solveMs = msSince(t0);
-          t0 = Clock::now();
-          out.nurbs = toNurbs(surface, options);
-        } else if constexpr (std::is_same_v<T, SpectralModel> ||
-                             std::is_same_v<T, CrossSectionModel>) {
-          out.name = displayName(model.name, path);
-          const SolvedSpectral solved = solveSpectralModel(model, path);
-          out.solveMs = msSince(t0);
-          t0 = Clock::now();
-          out.nurbs = toNurbs(solved, options);
-        } else {
-          static_assert(std::is_same_v<T, BSplinePdeModel>);
-          out.name = displayName(model.name, path);
-          const SolvedBSplinePde solved = solveBSplineModel(model, path);
-          out.solveMs = msSince(t0);
-          t0 = Clock::now();
-          out.nurbs = toNurbs(std::span<const BSplineSurface>(solved.pieces), options);
-        }
-        out.convertMs = msSince(t0);
-      },
-      any);
+  out.name = modelName(modelNameOf(any), path);
+  auto t0 = Clock::now();
+  if (const auto* frames = std::get_if<VertexFrameModel>(&any)) {
+    const VertexFrameSurface surface = solve(*frames);
+    out.solveMs = msSince(t0);
+    t0 = Clock::now();
+    out.nurbs = toNurbs(surface, options);
+  } else if (const auto* bspline = std::get_if<BSplinePdeModel>(&any)) {
+    const SolvedBSplinePde solved = solveBSplineModel(*bspline, path);
+    out.solveMs = msSince(t0);
+    t0 = Clock::now();
+    out.nurbs = toNurbs(std::span<const BSplineSurface>(solved.pieces), options);
+  } else {
+    const SolvedSpectral solved = *solveIfSpectral(any, path);  // the types left
+    out.solveMs = msSince(t0);
+    t0 = Clock::now();
+    out.nurbs = toNurbs(solved, options);
+  }
+  out.convertMs = msSince(t0);
   return out;
 }
 
@@ -160,12 +134,12 @@ int ExportCommand::run() const {
         "{}: {} ({} exact, {} approximated), max deviation {:.2g} ({:.2g} of the bounding-box "
         "diagonal), tolerance {:.3g} -> {} (solve {:.3f} ms, convert {:.3f} ms, write {:.1f} "
         "ms)\n",
-        model.name, plural(nurbs.faces.size(), "face"), exact, nurbs.faces.size() - exact,
-        deviation, relative, nurbs.tolerance, outPath, model.solveMs, model.convertMs, writeMs);
-    fmt::print("sewn: {}, {}, {}{}\n", plural(report.shells, "shell"),
-               plural(report.freeEdges, "free edge"),
-               plural(report.degeneratedEdges, "degenerated edge"),
-               report.multipleEdges ? ", " + plural(report.multipleEdges, "multiple edge") : "");
+        model.name, count(nurbs.faces.size(), "face"), exact, nurbs.faces.size() - exact, deviation,
+        relative, nurbs.tolerance, outPath, model.solveMs, model.convertMs, writeMs);
+    fmt::print("sewn: {}, {}, {}{}\n", count(report.shells, "shell"),
+               count(report.freeEdges, "free edge"),
+               count(report.degeneratedEdges, "degenerated edge"),
+               report.multipleEdges ? ", " + count(report.multipleEdges, "multiple edge") : "");
     return 0;
   } catch (const ExportUsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

@@ -1,12 +1,10 @@
 // pdesurf: the command line. Thin: parse arguments, call the library, report.
 // Exit codes: 0 success, 1 bad input (model or mesh file), 2 usage error.
-#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <optional>
 #include <string>
-#include <type_traits>
 #include <variant>
 
 #include <fmt/format.h>
@@ -14,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bspline_commands.hpp"
+#include "cli_common.hpp"
 #include "export_command.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/coons.hpp"
@@ -29,19 +28,17 @@
 namespace {
 
 using namespace pdesurf;
-using Clock = std::chrono::steady_clock;
-
-constexpr int kExitInput = 1;
-constexpr int kExitUsage = 2;
+using cli::Clock;
+using cli::count;
+using cli::kExitInput;
+using cli::kExitUsage;
+using cli::modelName;
+using cli::msSince;
 
 /// An argument that is well-formed but unusable with this model (exit 2).
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 struct SolveArgs {
   std::string solver = "global";
@@ -71,19 +68,6 @@ void printNotes(const VertexFrameSurface& surface, const std::string& model) {
   for (const std::string& note : surface.notes) fmt::print(stderr, "{}: note: {}\n", model, note);
 }
 
-std::string modelName(const std::string& name, const std::string& path) {
-  if (!name.empty()) return name;
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-/// "1 frame", "2 frames", "1 vertex", "3 vertices".
-std::string count(std::size_t n, const std::string& noun) {
-  if (n == 1) return "1 " + noun;
-  if (noun == "vertex") return fmt::format("{} vertices", n);
-  return fmt::format("{} {}{}", n, noun, noun.ends_with("ch") ? "es" : "s");
-}
-
 /// An output path pdesurf cannot write (by its extension) is a usage error, found before
 /// any work.
 void checkMeshExtension(const std::string& outPath) {
@@ -107,8 +91,8 @@ BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
                       const SolveArgs& args) {
   BuiltModel built;
   const AnyModel any = loadModel(modelPath);
+  built.name = modelName(modelNameOf(any), modelPath);
   if (const auto* model = std::get_if<VertexFrameModel>(&any)) {
-    built.name = modelName(model->name, modelPath);
     const SolveOptions options = args.options(*model);
     auto t0 = Clock::now();
     const VertexFrameSurface surface = solve(*model, options);
@@ -123,7 +107,6 @@ BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
     return built;
   }
   if (const auto* model = std::get_if<BSplinePdeModel>(&any)) {
-    built.name = modelName(model->name, modelPath);
     auto t0 = Clock::now();
     const SolvedBSplinePde solved = solveBSplineModel(*model, modelPath);
     built.solveMs = msSince(t0);
@@ -135,17 +118,7 @@ BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
     return built;
   }
   auto t0 = Clock::now();
-  const SolvedSpectral solved = std::visit(
-      [&](const auto& m) -> SolvedSpectral {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, VertexFrameModel> || std::is_same_v<T, BSplinePdeModel>)
-          throw std::logic_error("unreachable");
-        else {
-          built.name = modelName(m.name, modelPath);
-          return solveSpectralModel(m, modelPath);
-        }
-      },
-      any);
+  const SolvedSpectral solved = *solveIfSpectral(any, modelPath);  // the types left
   built.solveMs = msSince(t0);
   t0 = Clock::now();
   built.mesh = tessellate(solved, resolution);
@@ -184,25 +157,9 @@ int runBuild(const std::string& modelPath, const std::string& outPath, std::uint
   return 0;
 }
 
-/// A spectral or cross-section model solved (errors name the file), or nothing for a
-/// vertex-frame model.
-std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& any, const std::string& path,
-                                              std::string& name) {
-  if (const auto* m = std::get_if<SpectralModel>(&any)) {
-    name = m->name;
-    return solveSpectralModel(*m, path);
-  }
-  if (const auto* m = std::get_if<CrossSectionModel>(&any)) {
-    name = m->name;
-    return solveSpectralModel(*m, path);
-  }
-  return std::nullopt;
-}
-
 int runSample(const std::string& modelPath, std::uint32_t grid, const SolveArgs& args) {
   AnyModel any = loadModel(modelPath);
-  std::string name;
-  if (auto solved = solveIfSpectral(any, modelPath, name)) {
+  if (auto solved = solveIfSpectral(any, modelPath)) {
     std::cout << cli::sampleJson(*solved, grid);
     return 0;
   }
@@ -232,9 +189,8 @@ int runSample(const std::string& modelPath, std::uint32_t grid, const SolveArgs&
 
 int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
   AnyModel any = loadModel(modelPath);
-  std::string name;
-  if (auto solved = solveIfSpectral(any, modelPath, name)) {
-    std::cout << cli::infoText(*solved, modelPath, name, json);
+  if (auto solved = solveIfSpectral(any, modelPath)) {
+    std::cout << cli::infoText(*solved, modelPath, modelNameOf(any), json);
     return 0;
   }
   if (const auto* m = std::get_if<BSplinePdeModel>(&any)) {
@@ -655,8 +611,7 @@ int main(int argc, char** argv) {
     }
     if (*spine) {
       AnyModel any = loadModel(modelPath);
-      std::string name;
-      auto solved = solveIfSpectral(any, modelPath, name);
+      auto solved = solveIfSpectral(any, modelPath);
       if (!solved)
         throw UsageError(fmt::format(
             "{}: only spectral and cross-sections models have a spine (this is a {} model)",

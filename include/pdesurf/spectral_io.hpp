@@ -40,6 +40,8 @@ using AnyModel = std::variant<VertexFrameModel, SpectralModel, CrossSectionModel
 
 /// The "type" of a model file: "vertex-frames", "spectral", "cross-sections", "bspline-pde".
 const char* modelTypeName(const AnyModel& model);
+/// The "name" a model file gives (empty when it gives none).
+const std::string& modelNameOf(const AnyModel& model);
 
 /// Parses and validates a model of any type (by its "type"); `source` names it in errors.
 AnyModel parseModel(std::string_view text, const std::string& source);
@@ -84,6 +86,8 @@ struct SolvedSpectral {
 };
 SolvedSpectral solveSpectralModel(const SpectralModel& model, const std::string& source);
 SolvedSpectral solveSpectralModel(const CrossSectionModel& model, const std::string& source);
+/// A spectral or cross-section model, solved; nothing for the other types.
+std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source);
 
 /// The tessellation for `samples` points per patch side, the resolution of the CLI and the
 /// studio: `samples` rows along u and 4(samples − 1) columns around the closed direction v

@@ -426,19 +426,18 @@ Mesh tessellate(const SolvedBSplinePde& solved, std::uint32_t samples) {
         }
       }
   }
-  const std::uint32_t columnsOfQuads = pv * cv;
-  for (std::uint32_t a = 0; a + 1 < rows; ++a)
-    for (std::uint32_t b = 0; b < columnsOfQuads; ++b) {
-      const std::uint32_t b1 = (b + 1) % cols;
-      const std::uint32_t v00 = a * cols + b, v10 = v00 + cols;
-      const std::uint32_t v01 = a * cols + b1, v11 = v01 + cols;
-      std::uint32_t piece = 0;
-      for (std::size_t k = 0; k < solved.origin.size(); ++k)
-        if (solved.origin[k][0] == a / cu && solved.origin[k][1] == b / cv)
-          piece = static_cast<std::uint32_t>(k);
-      mesh.indices.insert(mesh.indices.end(), {v00, v10, v11, v00, v11, v01});
-      mesh.patchIds.insert(mesh.patchIds.end(), {piece, piece});
-    }
+  for (std::size_t k = 0; k < solved.pieces.size(); ++k) {
+    const auto [p, q] = solved.origin[k];
+    const auto piece = static_cast<std::uint32_t>(k);
+    for (std::uint32_t a = p * cu; a < (p + 1) * cu; ++a)
+      for (std::uint32_t b = q * cv; b < (q + 1) * cv; ++b) {
+        const std::uint32_t b1 = (b + 1) % cols;  // the closed blend's last column is column 0
+        const std::uint32_t v00 = a * cols + b, v10 = v00 + cols;
+        const std::uint32_t v01 = a * cols + b1, v11 = v01 + cols;
+        mesh.indices.insert(mesh.indices.end(), {v00, v10, v11, v00, v11, v01});
+        mesh.patchIds.insert(mesh.patchIds.end(), {piece, piece});
+      }
+  }
   return mesh;
 }
 

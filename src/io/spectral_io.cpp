@@ -262,6 +262,10 @@ const char* modelTypeName(const AnyModel& model) {
   return kNames[model.index()];
 }
 
+const std::string& modelNameOf(const AnyModel& model) {
+  return std::visit([](const auto& m) -> const std::string& { return m.name; }, model);
+}
+
 AnyModel loadModel(const std::string& path) {
   return parseModel(detail::readModelFile(path), path);
 }
@@ -313,6 +317,12 @@ SolvedSpectral solveSpectralModel(const CrossSectionModel& model, const std::str
   s.type = "cross-sections";
   s.chain = solveModel(model, source);
   return s;
+}
+
+std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source) {
+  if (const auto* m = std::get_if<SpectralModel>(&model)) return solveSpectralModel(*m, source);
+  if (const auto* m = std::get_if<CrossSectionModel>(&model)) return solveSpectralModel(*m, source);
+  return std::nullopt;
 }
 
 SpectralTessellateOptions spectralMeshOptions(std::uint32_t samples) {

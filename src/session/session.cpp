@@ -68,19 +68,15 @@ const VertexFrameSurface& ModelSession::surface(const SolveOptions& options) {
 // Spectral and cross-section models
 
 SpectralSession::Solved SpectralSession::solve(AnyModel model) const {
-  SolvedSpectral solved;
-  std::optional<SolvedBSplinePde> bspline;
-  if (const auto* m = std::get_if<SpectralModel>(&model)) {
-    solved = solveSpectralModel(*m, source_);
-  } else if (const auto* c = std::get_if<CrossSectionModel>(&model)) {
-    solved = solveSpectralModel(*c, source_);
-  } else if (const auto* b = std::get_if<BSplinePdeModel>(&model)) {
-    solved.type = "bspline-pde";
-    bspline = solveBSplineModel(*b, source_);
-  } else {
-    throw ModelError(source_, "$.type", "vertex-frames models open in a ModelSession");
+  if (auto solved = solveIfSpectral(model, source_))
+    return {std::move(model), std::move(*solved), std::nullopt};
+  if (const auto* b = std::get_if<BSplinePdeModel>(&model)) {
+    SolvedSpectral empty;
+    empty.type = "bspline-pde";
+    std::optional<SolvedBSplinePde> bspline = solveBSplineModel(*b, source_);
+    return {std::move(model), std::move(empty), std::move(bspline)};
   }
-  return {std::move(model), std::move(solved), std::move(bspline)};
+  throw ModelError(source_, "$.type", "vertex-frames models open in a ModelSession");
 }
 
 SpectralSession::SpectralSession(AnyModel model, std::string source)

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
-#include <variant>
+#include <utility>
 #include <vector>
 
 #include "pdesurf/spectral_io.hpp"
@@ -30,15 +30,9 @@ inline std::vector<std::string> exampleFiles() {
 
 /// A spectral or cross-section model file, solved (std::logic_error for another type).
 inline SolvedSpectral solveSpectralFile(const std::string& path) {
-  return std::visit(
-      [&](const auto& m) -> SolvedSpectral {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, SpectralModel> || std::is_same_v<T, CrossSectionModel>)
-          return solveSpectralModel(m, path);
-        else
-          throw std::logic_error(path + " is not a spectral example");
-      },
-      loadModel(path));
+  std::optional<SolvedSpectral> solved = solveIfSpectral(loadModel(path), path);
+  if (!solved) throw std::logic_error(path + " is not a spectral example");
+  return std::move(*solved);
 }
 
 }  // namespace pdesurf::testing
