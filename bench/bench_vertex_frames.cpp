@@ -68,9 +68,7 @@ const VertexFrameSurface& tessellationSheet() {
 }
 
 /// Tessellation with normals into a mesh whose buffers are reused; items = vertices.
-void BM_Tessellate(benchmark::State& state) {
-  const VertexFrameSurface& s = tessellationSheet();
-  const auto res = static_cast<std::uint32_t>(state.range(0));
+void runTessellate(benchmark::State& state, const VertexFrameSurface& s, std::uint32_t res) {
   Mesh mesh;
   for (auto _ : state) {
     tessellate(s, {res}, mesh);
@@ -80,18 +78,16 @@ void BM_Tessellate(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(mesh.vertexCount());
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.vertexCount()));
 }
-BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
 
 /// Re-tessellation on an unchanged topology and resolution (a studio drag): a Tessellator
-/// alternates between two solutions of the sheet on one topology, the second with every
+/// alternates between two solutions of a sheet on one topology, the second with every
 /// vertex moved, so each call rewrites all positions and normals; items = vertices.
-void BM_Retessellate(benchmark::State& state) {
-  VertexFrameModel moved = sheet(32);
+void runRetessellate(benchmark::State& state, int side, std::uint32_t res) {
+  VertexFrameModel moved = sheet(side);
   const auto topology = std::make_shared<const FrameTopology>(buildTopology(moved));
   const VertexFrameSurface s0 = solve(moved, topology);
   for (Vec3& v : moved.vertices) v.z() += 0.05 * std::cos(3.0 * v.x());
   const VertexFrameSurface s1 = solve(moved, topology);
-  const auto res = static_cast<std::uint32_t>(state.range(0));
   Tessellator tessellator;
   tessellator.tessellate(s1, {res});  // lays the mesh out
   bool second = false;
@@ -105,7 +101,34 @@ void BM_Retessellate(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(nv);
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
 }
+
+/// The 1,024-frame sheet, tessellated afresh at N = Arg.
+void BM_Tessellate(benchmark::State& state) {
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)));
+}
+BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+
+/// The 1,024-frame sheet re-tessellated at N = Arg.
+void BM_Retessellate(benchmark::State& state) {
+  runRetessellate(state, 32, static_cast<std::uint32_t>(state.range(0)));
+}
 BENCHMARK(BM_Retessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+
+/// The computation alone: a sheet small enough (9 frames at N = 33, 4 at N = 65: under 1 MB
+/// of mesh) that its mesh stays in this core's L2 between calls, so that no time goes to
+/// memory traffic. Args: frames per side, N. Items = vertices.
+void BM_TessellateInCache(benchmark::State& state) {
+  const VertexFrameSurface s = solve(sheet(static_cast<int>(state.range(0))));
+  runTessellate(state, s, static_cast<std::uint32_t>(state.range(1)));
+}
+BENCHMARK(BM_TessellateInCache)->Args({3, 33})->Args({2, 65})->Unit(benchmark::kMicrosecond);
+
+/// Re-tessellation of that small sheet.
+void BM_RetessellateInCache(benchmark::State& state) {
+  runRetessellate(state, static_cast<int>(state.range(0)),
+                  static_cast<std::uint32_t>(state.range(1)));
+}
+BENCHMARK(BM_RetessellateInCache)->Args({3, 33})->Args({2, 65})->Unit(benchmark::kMicrosecond);
 
 /// The baselines' writing: nv vertices (position and normal, 6 floats each) and, when
 /// `triangles`, the mesh's triangle indices and patch ids, into its existing buffers.

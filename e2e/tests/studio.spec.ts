@@ -351,7 +351,7 @@ test('Rotate turns a vertex-frame model about its centre: one undo step', async 
 
 test.describe('a B-spline PDE model', () => {
   test.use({ example: 'bspline-blend.json' });
-  test('shows its control nets and surface, and rotates as a whole', async ({ page, studio }) => {
+  test('shows its control nets and surface, and scales as a whole', async ({ page, studio }) => {
     await openStudio(page, studio);
     await expect(page.getByTestId('status')).toContainText('bspline-pde model: view only');
     await expect(page.getByTestId('frame-caption')).toHaveText('Control nets (view only)');
@@ -362,6 +362,9 @@ test.describe('a B-spline PDE model', () => {
     const before = await box();
     await page.getByTestId('scale-factor').fill('2');
     await page.getByTestId('scale-apply').click();
+    // The session's revision changes only when the answer arrives: wait for it first, or
+    // the old mesh still matches the old revision.
+    await expect(page.getByTestId('status')).toContainText('scaled the model');
     await meshUpToDate(page);
     expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);
     const after = await box();

@@ -8,14 +8,18 @@
 //
 // Speed: along a row (v fixed) a patch is a cubic in u once its v-powers are folded
 // (foldLines), and its unnormalised normal Su × Sv, a product of two quadratics, is a quartic;
-// so a row costs two polynomial evaluations per point in one fused, vectorised loop, written
-// as floats straight into the mesh (interior rows are contiguous there). Rows are covered by
-// whole blocks of vector width, the last block overlapping the one before (it rewrites the
-// same values), so no remainder loop. Force terms, products of per-u and per-v tables, are
-// summed per row only where a force reaches it. The boundary ring (two rows and two columns;
-// a column is a row with u and v exchanged) goes through small buffers, since its normals
-// are summed over patches. A Tessellator keeps the layout and the triangles, so that a
-// surface re-solved on the same topology rewrites positions and normals only.
+// so a row costs two polynomial evaluations per point in vectorised loops, written as floats
+// straight into the mesh (interior rows are contiguous there). A row's coefficients are read
+// once for all its blocks (the folds are stored so that they lie at fixed offsets); rows are
+// covered by whole blocks of vector width, the last block overlapping the one before (it
+// rewrites the same values), so no remainder loop. A fresh tessellation writes each row's
+// triangles right after the row's vertices, so that their stores drain during the next
+// row's arithmetic rather than in one burst per patch. Force terms, products of per-u and
+// per-v tables, are summed per row only where a force reaches it. The boundary ring (two rows
+// and two columns; a column is a row with u and v exchanged) goes through small buffers,
+// since its normals are summed over patches. A Tessellator keeps the layout and the
+// triangles, so that a surface re-solved on the same topology rewrites positions and
+// normals only.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -109,142 +113,149 @@ bool lineForces(const VertexFramePatch& patch, const std::vector<ForceTables>& t
 /// Lines of a patch folded over their fixed parameter, per component, in the line's own
 /// parameter x: S = Σ p[i] x^i, the derivative along the line Sa = Σ da[i] x^i and across it
 /// Sc = Σ dc[i] x^i (cubic, quadratic, quadratic); da and dc are divided by the patch's size
-/// bound. The normal numerator sign·(Sa × Sc) = Σ nrm[i] x^i is a quartic. Stored field by
-/// field, a line per entry (field f of line j at f·stride + j), so that folding every row
-/// of a patch is one vectorised loop.
+/// bound. The normal numerator sign·(Sa × Sc) = Σ nrm[i] x^i is a quartic. Stored in chunks
+/// of kLanes lines, field by field: field f of line j at (j/kLanes·kFields + f)·kLanes +
+/// j%kLanes. Folding a chunk is one vectorised loop over its lines, and a line's fields lie
+/// at fixed offsets f·kLanes from its first, which the row kernel reads as broadcasts.
 constexpr std::size_t kFieldP = 0;     // p[k][i] at kFieldP + 4k + i
 constexpr std::size_t kFieldDa = 12;   // da[k][i] at kFieldDa + 3k + i
 constexpr std::size_t kFieldDc = 21;   // dc[k][i] at kFieldDc + 3k + i
 constexpr std::size_t kFieldNrm = 30;  // nrm[k][i] at kFieldNrm + 5k + i
 constexpr std::size_t kFields = 45;
 
-/// One folded line: its first field and the stride between fields.
+/// One folded line: its first field (the others at multiples of kLanes after it).
 struct LinePolynomials {
   const double* field;
-  std::size_t stride;
   double sign;  ///< ±1: orients Sa × Sc as the mesh's normals (nrm includes it)
-  double operator()(std::size_t f) const { return field[f * stride]; }
+  double operator()(std::size_t f) const { return field[f * kLanes]; }
 };
 
-/// Folds lines y[0..count) of a patch. `a` holds the coefficients (per component, monomials
-/// as in VertexFramePatch) with its parameters ordered (along, across); y is the across one.
+/// Line j of folds stored as foldLines stores them.
+inline LinePolynomials foldedLine(const double* folds, std::size_t j, double sign) {
+  return {folds + (j / kLanes * kFields) * kLanes + j % kLanes, sign};
+}
+
+/// Folds lines y[0..count) of a patch; y is readable (padded) up to a whole chunk and `out`
+/// holds whole chunks. `a` holds the coefficients (per component, monomials as in
+/// VertexFramePatch) with its parameters ordered (along, across); y is the across one.
 void foldLines(const double (&a)[3][10], const double* __restrict y, std::size_t count, double sign,
-               double invScale, double* __restrict out, std::size_t stride) {
-  for (std::size_t j = 0; j < count; ++j) {
-    const double y1 = y[j], y2 = y1 * y1, y3 = y2 * y1;
-    double da[3][3], dc[3][3];
-    for (int k = 0; k < 3; ++k) {
-      const double* c = a[k];
-      const double p1 = c[1] + y1 * c[7] + y2 * c[9], p2 = c[2] + y1 * c[8];
-      out[(kFieldP + 4 * k) * stride + j] = c[0] + y1 * c[4] + y2 * c[5] + y3 * c[6];
-      out[(kFieldP + 4 * k + 1) * stride + j] = p1;
-      out[(kFieldP + 4 * k + 2) * stride + j] = p2;
-      out[(kFieldP + 4 * k + 3) * stride + j] = c[3];
-      da[k][0] = p1 * invScale;
-      da[k][1] = 2.0 * p2 * invScale;
-      da[k][2] = 3.0 * c[3] * invScale;
-      dc[k][0] = (c[4] + 2.0 * y1 * c[5] + 3.0 * y2 * c[6]) * invScale;
-      dc[k][1] = (c[7] + 2.0 * y1 * c[9]) * invScale;
-      dc[k][2] = c[8] * invScale;
-      for (int i = 0; i < 3; ++i) {
-        out[(kFieldDa + 3 * k + i) * stride + j] = da[k][i];
-        out[(kFieldDc + 3 * k + i) * stride + j] = dc[k][i];
-      }
-    }
-    // nrm = sign · Σ_{i+l=m} da_i × dc_l, the coefficients of the product of the quadratics.
-    double m[3][5] = {};
-    for (int i = 0; i < 3; ++i)
-      for (int l = 0; l < 3; ++l) {
-        m[0][i + l] += da[1][i] * dc[2][l] - da[2][i] * dc[1][l];
-        m[1][i + l] += da[2][i] * dc[0][l] - da[0][i] * dc[2][l];
-        m[2][i + l] += da[0][i] * dc[1][l] - da[1][i] * dc[0][l];
-      }
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 5; ++i) out[(kFieldNrm + 5 * k + i) * stride + j] = sign * m[k][i];
-  }
-}
-
-/// S and the unit normal at the B points x[0..B) of one line, plus force terms (9 arrays at
-/// `forceStride`: position, along, across; x y z each) when Forces. Writes positions and
-/// normals as interleaved floats and |Sa × Sc|² (scale-free: a sine²) for degeneracy checks.
-/// Without forces the normal is the folded quartic; with them, the cross product per point.
-/// Returns how many points are degenerate (|Sa × Sc|² not above kDegenerate2, or NaN).
-/// A fixed trip count and restrict parameters let the compiler vectorise the whole block.
-template <std::size_t B, bool Forces>
-inline std::uint32_t evaluateBlock(const double* __restrict x, const LinePolynomials& line,
-                                   const double* __restrict force, std::size_t forceStride,
-                                   float* __restrict pos, float* __restrict nor,
-                                   double* __restrict cross2) {
-  struct {
-    double p[3][4], da[3][3], dc[3][3], nrm[3][5], sign;
-  } r;
-  r.sign = line.sign;
-  for (std::size_t k = 0; k < 3; ++k) {
-    for (std::size_t i = 0; i < 4; ++i) r.p[k][i] = line(kFieldP + 4 * k + i);
-    for (std::size_t i = 0; i < 5; ++i) r.nrm[k][i] = Forces ? 0.0 : line(kFieldNrm + 5 * k + i);
-    for (std::size_t i = 0; i < 3; ++i) {
-      r.da[k][i] = Forces ? line(kFieldDa + 3 * k + i) : 0.0;
-      r.dc[k][i] = Forces ? line(kFieldDc + 3 * k + i) : 0.0;
-    }
-  }
-  std::uint32_t degenerate = 0;
-  // Positions, then normals: two passes over the block need fewer registers than one.
-  for (std::size_t i = 0; i < B; ++i) {
-    const double t = x[i];
-    for (int k = 0; k < 3; ++k) {
-      double p = r.p[k][0] + t * (r.p[k][1] + t * (r.p[k][2] + t * r.p[k][3]));
-      if constexpr (Forces) p += force[k * forceStride + i];
-      pos[3 * i + k] = static_cast<float>(p);
-    }
-  }
-  for (std::size_t i = 0; i < B; ++i) {
-    const double t = x[i];
-    double nv[3];
-    if constexpr (Forces) {
-      double da[3], dc[3];
+               double invScale, double* __restrict out) {
+  for (std::size_t chunk = 0; chunk < count; chunk += kLanes) {
+    double* __restrict o = out + chunk * kFields;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const double y1 = y[chunk + l], y2 = y1 * y1, y3 = y2 * y1;
+      double da[3][3], dc[3][3];
       for (int k = 0; k < 3; ++k) {
-        da[k] = r.da[k][0] + t * (r.da[k][1] + t * r.da[k][2]) + force[(3 + k) * forceStride + i];
-        dc[k] = r.dc[k][0] + t * (r.dc[k][1] + t * r.dc[k][2]) + force[(6 + k) * forceStride + i];
+        const double* c = a[k];
+        const double p1 = c[1] + y1 * c[7] + y2 * c[9], p2 = c[2] + y1 * c[8];
+        o[(kFieldP + 4 * k) * kLanes + l] = c[0] + y1 * c[4] + y2 * c[5] + y3 * c[6];
+        o[(kFieldP + 4 * k + 1) * kLanes + l] = p1;
+        o[(kFieldP + 4 * k + 2) * kLanes + l] = p2;
+        o[(kFieldP + 4 * k + 3) * kLanes + l] = c[3];
+        da[k][0] = p1 * invScale;
+        da[k][1] = 2.0 * p2 * invScale;
+        da[k][2] = 3.0 * c[3] * invScale;
+        dc[k][0] = (c[4] + 2.0 * y1 * c[5] + 3.0 * y2 * c[6]) * invScale;
+        dc[k][1] = (c[7] + 2.0 * y1 * c[9]) * invScale;
+        dc[k][2] = c[8] * invScale;
+        for (int i = 0; i < 3; ++i) {
+          o[(kFieldDa + 3 * k + i) * kLanes + l] = da[k][i];
+          o[(kFieldDc + 3 * k + i) * kLanes + l] = dc[k][i];
+        }
       }
-      nv[0] = r.sign * (da[1] * dc[2] - da[2] * dc[1]);
-      nv[1] = r.sign * (da[2] * dc[0] - da[0] * dc[2]);
-      nv[2] = r.sign * (da[0] * dc[1] - da[1] * dc[0]);
-    } else {
+      // nrm = sign · Σ_{i+l=m} da_i × dc_l, the coefficients of the product of the quadratics.
+      double m[3][5] = {};
+      for (int i = 0; i < 3; ++i)
+        for (int q = 0; q < 3; ++q) {
+          m[0][i + q] += da[1][i] * dc[2][q] - da[2][i] * dc[1][q];
+          m[1][i + q] += da[2][i] * dc[0][q] - da[0][i] * dc[2][q];
+          m[2][i + q] += da[0][i] * dc[1][q] - da[1][i] * dc[0][q];
+        }
       for (int k = 0; k < 3; ++k)
-        nv[k] = r.nrm[k][0] +
-                t * (r.nrm[k][1] + t * (r.nrm[k][2] + t * (r.nrm[k][3] + t * r.nrm[k][4])));
+        for (int i = 0; i < 5; ++i) o[(kFieldNrm + 5 * k + i) * kLanes + l] = sign * m[k][i];
     }
-    const double len2 = nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2];
-    // The length in single precision, which the float normal needs (and where the square
-    // root and division cost a fraction of double's). len2 is a sine², at most a few units;
-    // where it underflows float the point is degenerate, and its normal is replaced.
-    const float inv = 1.0f / std::sqrt(static_cast<float>(len2));
-    cross2[i] = len2;
-    degenerate += !(len2 > kDegenerate2);
-    nor[3 * i] = static_cast<float>(nv[0]) * inv;
-    nor[3 * i + 1] = static_cast<float>(nv[1]) * inv;
-    nor[3 * i + 2] = static_cast<float>(nv[2]) * inv;
   }
-  return degenerate;
 }
 
-/// evaluateBlock over `count` ≥ B points: whole blocks, the last one shifted back to end at
-/// `count` (its overlap with the block before is written twice, with the same values).
-/// Returns whether any point is degenerate.
+/// S and the unit normal at the points x[0..count) (count ≥ B) of one folded line, plus force
+/// terms (9 arrays at `forceStride`: position, along, across; x y z each) when Forces. Writes
+/// positions and normals as interleaved floats and |Sa × Sc|² (scale-free: a sine²) for
+/// degeneracy checks. Without forces the normal is the folded quartic; with them, the cross
+/// product per point. The line's coefficients are read once; the points go in whole blocks of
+/// B, the last one shifted back to end at `count` (its overlap with the block before is
+/// written twice, with the same values), so that every block is one fixed-length vectorised
+/// loop. Returns whether some point is degenerate (|Sa × Sc|² not above kDegenerate2, or NaN).
 template <std::size_t B, bool Forces>
-bool evaluateSpan(const double* x, std::size_t count, const LinePolynomials& r, const double* force,
-                  std::size_t forceStride, float* pos, float* nor, double* cross2) {
-  std::uint32_t degenerate = 0;
-  for (std::size_t i = 0;; i += B) {
-    if (i + B > count) i = count - B;
-    degenerate += evaluateBlock<B, Forces>(x + i, r, Forces ? force + i : nullptr, forceStride,
-                                           pos + 3 * i, nor + 3 * i, cross2 + i);
-    if (i + B >= count) break;
+bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolynomials& line,
+                  const double* __restrict force, std::size_t forceStride, float* __restrict pos,
+                  float* __restrict nor, double* __restrict cross2) {
+  double p[3][4], da[3][3], dc[3][3], nrm[3][5];
+  const double sign = line.sign;
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t i = 0; i < 4; ++i) p[k][i] = line(kFieldP + 4 * k + i);
+    for (std::size_t i = 0; i < 5; ++i) nrm[k][i] = Forces ? 0.0 : line(kFieldNrm + 5 * k + i);
+    for (std::size_t i = 0; i < 3; ++i) {
+      da[k][i] = Forces ? line(kFieldDa + 3 * k + i) : 0.0;
+      dc[k][i] = Forces ? line(kFieldDc + 3 * k + i) : 0.0;
+    }
   }
+  // Positions, then normals: two loops over the line's blocks, each with fewer values live
+  // (its coefficients stay in registers) than one would need.
+  for (std::size_t i0 = 0;; i0 += B) {
+    if (i0 + B > count) i0 = count - B;
+    const double* __restrict t = x + i0;
+    const double* __restrict f = Forces ? force + i0 : nullptr;
+    float* __restrict po = pos + 3 * i0;
+    for (std::size_t i = 0; i < B; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        double v = p[k][0] + t[i] * (p[k][1] + t[i] * (p[k][2] + t[i] * p[k][3]));
+        if constexpr (Forces) v += f[k * forceStride + i];
+        po[3 * i + k] = static_cast<float>(v);
+      }
+    }
+    if (i0 + B >= count) break;
+  }
+  for (std::size_t i0 = 0;; i0 += B) {
+    if (i0 + B > count) i0 = count - B;
+    const double* __restrict t = x + i0;
+    const double* __restrict f = Forces ? force + i0 : nullptr;
+    float* __restrict no = nor + 3 * i0;
+    double* __restrict c2 = cross2 + i0;
+    for (std::size_t i = 0; i < B; ++i) {
+      const double ti = t[i];
+      double nv[3];
+      if constexpr (Forces) {
+        double a[3], c[3];
+        for (int k = 0; k < 3; ++k) {
+          a[k] = da[k][0] + ti * (da[k][1] + ti * da[k][2]) + f[(3 + k) * forceStride + i];
+          c[k] = dc[k][0] + ti * (dc[k][1] + ti * dc[k][2]) + f[(6 + k) * forceStride + i];
+        }
+        nv[0] = sign * (a[1] * c[2] - a[2] * c[1]);
+        nv[1] = sign * (a[2] * c[0] - a[0] * c[2]);
+        nv[2] = sign * (a[0] * c[1] - a[1] * c[0]);
+      } else {
+        for (int k = 0; k < 3; ++k)
+          nv[k] =
+              nrm[k][0] + ti * (nrm[k][1] + ti * (nrm[k][2] + ti * (nrm[k][3] + ti * nrm[k][4])));
+      }
+      const double len2 = nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2];
+      // The length in single precision, which the float normal needs (and where the square
+      // root and division cost a fraction of double's). len2 is a sine², at most a few
+      // units; where it underflows float the point is degenerate, and its normal is replaced.
+      const float inv = 1.0f / std::sqrt(static_cast<float>(len2));
+      c2[i] = len2;
+      no[3 * i] = static_cast<float>(nv[0]) * inv;
+      no[3 * i + 1] = static_cast<float>(nv[1]) * inv;
+      no[3 * i + 2] = static_cast<float>(nv[2]) * inv;
+    }
+    if (i0 + B >= count) break;
+  }
+  int degenerate = 0;
+  for (std::size_t i = 0; i < count; ++i) degenerate |= !(cross2[i] > kDegenerate2);
   return degenerate != 0;
 }
 
-/// evaluateSpan with or without forces, in the widest blocks that fit.
+/// evaluateSpan with or without forces, in the widest blocks that fit (count ≥ kLanes).
 bool evaluateLine(const double* x, std::size_t count, const LinePolynomials& r, const double* force,
                   std::size_t forceStride, float* pos, float* nor, double* cross2) {
   if (count >= kWideBlock)
@@ -330,11 +341,17 @@ class TessellationEngine {
 
  private:
   PatchRing ring(const FrameTopology& topo, std::uint32_t k, std::uint32_t* ids) const;
+  /// Where the triangles of the patch being tessellated go, row by row.
+  struct TriangleRows {
+    std::uint32_t k;                  ///< the patch
+    std::size_t triangles;            ///< written so far (the mesh's), the next one's index
+    std::uint32_t *rowIds, *prevIds;  ///< mesh ids of the last row and the one before
+  };
   void evaluatePatchVertices(const VertexFramePatch& patch, double flip, const PatchRing& pr,
-                             const std::uint32_t* ring, std::uint32_t patchBase, Mesh& mesh);
-  std::size_t writePatchTriangles(std::uint32_t k, double flip, const PatchRing& pr,
-                                  const std::uint32_t* ring, std::uint32_t patchBase,
-                                  std::size_t triangles, Mesh& mesh);
+                             const std::uint32_t* ring, std::uint32_t patchBase,
+                             TriangleRows* triangles, Mesh& mesh);
+  void writeTriangleRow(TriangleRows& rows, std::uint32_t j, double flip, const PatchRing& pr,
+                        const std::uint32_t* ring, std::uint32_t patchBase, Mesh& mesh);
 
   // The layout.
   std::uint32_t n_ = 0, inner_ = 0, frames_ = 0;
@@ -415,7 +432,7 @@ void TessellationEngine::layOut(const FrameTopology& topo, std::uint32_t frames,
   lineCross2_.resize(4 * np_);
   rowCross2_.resize(np_);
   rowFolds_.resize(kFields * np_);
-  columnFolds_.resize(kFields * 2);
+  columnFolds_.resize(kFields * kLanes);
   firstNormal_.resize(std::size_t{boundaryCount_} * 3);
   hasFirst_.resize(boundaryCount_);
 }
@@ -456,7 +473,8 @@ PatchRing TessellationEngine::ring(const FrameTopology& topo, std::uint32_t k,
 
 void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, double flip,
                                                const PatchRing& pr, const std::uint32_t* ring,
-                                               std::uint32_t patchBase, Mesh& mesh) {
+                                               std::uint32_t patchBase, TriangleRows* triangles,
+                                               Mesh& mesh) {
   const std::uint32_t n = n_, inner = inner_;
   const std::size_t np = np_;
   double c[3][10], cSwapped[3][10];
@@ -483,14 +501,13 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
   }
   // Row j (column when `column`) of the patch, `count` points from parameter index `from`.
   // Every row, and the two boundary columns; Sa × Sc is Su × Sv on a row, Sv × Su on a column.
-  foldLines(c, t_.data(), n, flip, invScale, rowFolds_.data(), np);
-  const double columnParams[2] = {0.0, 1.0};
-  foldLines(cSwapped, columnParams, 2, -flip, invScale, columnFolds_.data(), 2);
+  foldLines(c, tp_.data(), n, flip, invScale, rowFolds_.data());
+  const double columnParams[kLanes] = {0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  // padded
+  foldLines(cSwapped, columnParams, 2, -flip, invScale, columnFolds_.data());
   auto line = [&](bool column, std::size_t j, std::size_t from, std::size_t count, float* pos,
                   float* nor, double* cross2) {
-    const LinePolynomials r =
-        column ? LinePolynomials{columnFolds_.data() + (j == 0 ? 0 : 1), 2, -flip}
-               : LinePolynomials{rowFolds_.data() + j, np, flip};
+    const LinePolynomials r = column ? foldedLine(columnFolds_.data(), j == 0 ? 0 : 1, -flip)
+                                     : foldedLine(rowFolds_.data(), j, flip);
     const bool forces = lineForces(patch, forceTables_, column, j, np, invScale, forceRow_);
     return evaluateLine(tp_.data() + from, count, r, forces ? forceRow_.data() + from : nullptr, np,
                         pos, nor, cross2);
@@ -508,7 +525,10 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
     for (int comp = 0; comp < 3; ++comp) out[comp] = static_cast<float>(nrm[comp]);
   };
 
-  // Interior rows, straight into the mesh (short rows through the line buffer).
+  // Interior rows, straight into the mesh (short rows through the line buffer), each
+  // followed by the triangles between it and the row before: the triangles' stores, which
+  // go to memory, then drain while the next row is computed instead of stalling in a burst.
+  if (triangles) writeTriangleRow(*triangles, 0, flip, pr, ring, patchBase, mesh);
   for (std::uint32_t j = 1; j + 1 < n; ++j) {
     const std::size_t first = std::size_t{patchBase + (j - 1) * inner} * 3;
     float* pos = mesh.positions.data() + first;
@@ -526,7 +546,9 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
     if (degenerate)
       for (std::uint32_t i = 0; i < inner; ++i)
         if (!(rowCross2_[i] > kDegenerate2)) insetNormal(i + 1, j, nor + 3 * i);
+    if (triangles) writeTriangleRow(*triangles, j, flip, pr, ring, patchBase, mesh);
   }
+  if (triangles) writeTriangleRow(*triangles, n - 1, flip, pr, ring, patchBase, mesh);
 
   // The boundary ring, side by side in each side's own direction (as the ring's ids run):
   // Alpha (v = 0) and Beta (v = 1) are rows, Delta (u = 1) and Gamma (u = 0) columns.
@@ -536,13 +558,14 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
     float* pos = linePos_.data() + s * 3 * np;
     float* nor = lineNor_.data() + s * 3 * np;
     double* cross2 = lineCross2_.data() + s * np;
-    line(column, fixed, 0, np, pos, nor, cross2);
+    const bool degenerate = line(column, fixed, 0, n >= kLanes ? n : np, pos, nor, cross2);
     auto at = [&](std::size_t q) -> std::array<std::size_t, 2> {  // grid (i, j) of point q
       return column ? std::array<std::size_t, 2>{fixed, q} : std::array<std::size_t, 2>{q, fixed};
     };
-    for (std::size_t q = 0; q < n; ++q)
-      if (pr.collapsedSide[s] || !(cross2[q] > kDegenerate2))
-        insetNormal(at(q)[0], at(q)[1], nor + 3 * q);
+    if (degenerate || pr.collapsedSide[s])
+      for (std::size_t q = 0; q < n; ++q)
+        if (pr.collapsedSide[s] || !(cross2[q] > kDegenerate2))
+          insetNormal(at(q)[0], at(q)[1], nor + 3 * q);
     // Corners come with the rows; every other boundary point of the patch once.
     const std::uint32_t* ids = ring + s * n;
     float* __restrict positions = mesh.positions.data();
@@ -594,80 +617,76 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
   }
 }
 
-std::size_t TessellationEngine::writePatchTriangles(std::uint32_t k, double flip,
-                                                    const PatchRing& pr, const std::uint32_t* ring,
-                                                    std::uint32_t patchBase, std::size_t triangles,
-                                                    Mesh& mesh) {
-  const std::uint32_t n = n_, inner = inner_;
-  std::uint32_t* rowIds = ids1_.data();
-  std::uint32_t* prevIds = ids0_.data();
-  for (std::uint32_t j = 0; j < n; ++j) {
-    std::swap(rowIds, prevIds);
-    if (j == 0) {
-      std::copy_n(ring, n, rowIds);  // Alpha
-    } else if (j + 1 == n) {
-      std::copy_n(ring + 2 * n, n, rowIds);  // Beta
+void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j, double flip,
+                                          const PatchRing& pr, const std::uint32_t* ring,
+                                          std::uint32_t patchBase, Mesh& mesh) {
+  const std::uint32_t n = n_, inner = inner_, k = rows.k;
+  std::swap(rows.rowIds, rows.prevIds);
+  std::uint32_t* rowIds = rows.rowIds;
+  const std::uint32_t* prevIds = rows.prevIds;
+  if (j == 0) {
+    std::copy_n(ring, n, rowIds);  // Alpha
+  } else if (j + 1 == n) {
+    std::copy_n(ring + 2 * n, n, rowIds);  // Beta
+  } else {
+    rowIds[0] = ring[3 * n + j];      // Gamma
+    rowIds[n - 1] = ring[1 * n + j];  // Delta
+    const std::uint32_t base = patchBase + (j - 1) * inner - 1;
+    // Rows next to Alpha or Beta (and all rows of small or pole patches) take the
+    // generic quad writer, which reads the whole row; the pattern writer needs 4 ids.
+    const bool fullRow = j == 1 || j + 2 == n || pr.repeatsIds || n < 4;
+    if (fullRow) {
+      for (std::uint32_t i = 1; i + 1 < n; ++i) rowIds[i] = base + i;
     } else {
-      rowIds[0] = ring[3 * n + j];      // Gamma
-      rowIds[n - 1] = ring[1 * n + j];  // Delta
-      const std::uint32_t base = patchBase + (j - 1) * inner - 1;
-      // Rows next to Alpha or Beta (and all rows of small or pole patches) take the
-      // generic quad writer, which reads the whole row; the pattern writer needs 4 ids.
-      const bool fullRow = j == 1 || j + 2 == n || pr.repeatsIds || n < 4;
-      if (fullRow) {
-        for (std::uint32_t i = 1; i + 1 < n; ++i) rowIds[i] = base + i;
-      } else {
-        rowIds[1] = base + 1;
-        rowIds[n - 2] = base + n - 2;
-      }
+      rowIds[1] = base + 1;
+      rowIds[n - 2] = base + n - 2;
     }
-
-    // Triangles between row j-1 and row j: quad (prev i, prev i+1, row i+1, row i).
-    if (j == 0) continue;
-    std::uint32_t* out = mesh.indices.data() + triangles * 3;
-    std::uint32_t* outPatch = mesh.patchIds.data() + triangles;
-    // The quads at corners (1,0) and (0,1) are split through the corner, so that no
-    // triangle is made of boundary points alone: two frames that share both sides at a
-    // corner (a pillow) would otherwise emit the same triangle twice.
-    const std::uint32_t altQuad = n < 3 ? n : (j == 1 ? n - 2 : (j + 1 == n ? 0 : n));
-    auto quadAt = [&](std::uint32_t i, std::uint32_t* o) {
-      if (i == altQuad)
-        writeQuadAlt(prevIds[i], prevIds[i + 1], rowIds[i + 1], rowIds[i], flip < 0, o);
-      else if (flip < 0)
-        writeQuadRow<true>(prevIds + i, rowIds + i, 1, o);
-      else
-        writeQuadRow<false>(prevIds + i, rowIds + i, 1, o);
-    };
-    if (!pr.repeatsIds) {  // no repeated ids: every quad gives two triangles
-      if (j >= 2 && j + 2 <= n && n >= 4) {
-        // Boundary quads at both ends, the patch-interior quads between them by pattern.
-        quadAt(0, out);
-        writeInteriorQuads(prevIds[1], n - 3, flip < 0 ? patternFlip_ : pattern_, out + 6);
-        quadAt(n - 2, out + 6 * (n - 2));
-      } else {
-        if (flip < 0)
-          writeQuadRow<true>(prevIds, rowIds, n - 1, out);
-        else
-          writeQuadRow<false>(prevIds, rowIds, n - 1, out);
-        if (altQuad < n) quadAt(altQuad, out + 6 * altQuad);
-      }
-      std::fill_n(outPatch, 2 * (n - 1), k);
-      outPatch += 2 * (n - 1);
-    } else {
-      for (std::uint32_t i = 0; i + 1 < n; ++i) {
-        std::uint32_t quad[6];
-        quadAt(i, quad);
-        for (const std::uint32_t* tri : {quad, quad + 3}) {
-          if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
-          std::copy_n(tri, 3, out);
-          out += 3;
-          *outPatch++ = k;
-        }
-      }
-    }
-    triangles = static_cast<std::size_t>(outPatch - mesh.patchIds.data());
   }
-  return triangles;
+
+  // Triangles between row j-1 and row j: quad (prev i, prev i+1, row i+1, row i).
+  if (j == 0) return;
+  std::uint32_t* out = mesh.indices.data() + rows.triangles * 3;
+  std::uint32_t* outPatch = mesh.patchIds.data() + rows.triangles;
+  // The quads at corners (1,0) and (0,1) are split through the corner, so that no
+  // triangle is made of boundary points alone: two frames that share both sides at a
+  // corner (a pillow) would otherwise emit the same triangle twice.
+  const std::uint32_t altQuad = n < 3 ? n : (j == 1 ? n - 2 : (j + 1 == n ? 0 : n));
+  auto quadAt = [&](std::uint32_t i, std::uint32_t* o) {
+    if (i == altQuad)
+      writeQuadAlt(prevIds[i], prevIds[i + 1], rowIds[i + 1], rowIds[i], flip < 0, o);
+    else if (flip < 0)
+      writeQuadRow<true>(prevIds + i, rowIds + i, 1, o);
+    else
+      writeQuadRow<false>(prevIds + i, rowIds + i, 1, o);
+  };
+  if (!pr.repeatsIds) {  // no repeated ids: every quad gives two triangles
+    if (j >= 2 && j + 2 <= n && n >= 4) {
+      // Boundary quads at both ends, the patch-interior quads between them by pattern.
+      quadAt(0, out);
+      writeInteriorQuads(prevIds[1], n - 3, flip < 0 ? patternFlip_ : pattern_, out + 6);
+      quadAt(n - 2, out + 6 * (n - 2));
+    } else {
+      if (flip < 0)
+        writeQuadRow<true>(prevIds, rowIds, n - 1, out);
+      else
+        writeQuadRow<false>(prevIds, rowIds, n - 1, out);
+      if (altQuad < n) quadAt(altQuad, out + 6 * altQuad);
+    }
+    std::fill_n(outPatch, 2 * (n - 1), k);
+    outPatch += 2 * (n - 1);
+  } else {
+    for (std::uint32_t i = 0; i + 1 < n; ++i) {
+      std::uint32_t quad[6];
+      quadAt(i, quad);
+      for (const std::uint32_t* tri : {quad, quad + 3}) {
+        if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+        std::copy_n(tri, 3, out);
+        out += 3;
+        *outPatch++ = k;
+      }
+    }
+  }
+  rows.triangles = static_cast<std::size_t>(outPatch - mesh.patchIds.data());
 }
 
 void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool writeTriangles) {
@@ -689,9 +708,10 @@ void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool
     const PatchRing& pr = patchRings_[k];
     const std::uint32_t* ring = rings_.data() + std::size_t{k} * 4 * n;
     const std::uint32_t patchBase = boundaryCount_ + k * inner * inner;
-    evaluatePatchVertices(surface.patches[k], flip, pr, ring, patchBase, mesh);
-    if (writeTriangles)
-      triangles = writePatchTriangles(k, flip, pr, ring, patchBase, triangles, mesh);
+    TriangleRows rows{k, triangles, ids0_.data(), ids1_.data()};
+    evaluatePatchVertices(surface.patches[k], flip, pr, ring, patchBase,
+                          writeTriangles ? &rows : nullptr, mesh);
+    triangles = rows.triangles;
   }
   if (writeTriangles) {
     mesh.indices.resize(triangles * 3);
