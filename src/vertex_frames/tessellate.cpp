@@ -177,14 +177,25 @@ void foldLines(const double (&a)[3][10], const double* __restrict y, std::size_t
   }
 }
 
+/// Calls block(i0) for the starts of whole blocks of B covering [0, count) (count ≥ B), the
+/// last one shifted back to end at `count`: it overlaps the block before and rewrites the
+/// same values, so that every block is one fixed-length vectorised loop.
+template <std::size_t B, typename Block>
+inline void forEachBlock(std::size_t count, Block&& block) {
+  for (std::size_t i0 = 0;; i0 += B) {
+    if (i0 + B > count) i0 = count - B;
+    block(i0);
+    if (i0 + B >= count) break;
+  }
+}
+
 /// S and the unit normal at the points x[0..count) (count ≥ B) of one folded line, plus force
 /// terms (9 arrays at `forceStride`: position, along, across; x y z each) when Forces. Writes
 /// positions and normals as interleaved floats and |Sa × Sc|² (scale-free: a sine²) for
 /// degeneracy checks. Without forces the normal is the folded quartic; with them, the cross
-/// product per point. The line's coefficients are read once; the points go in whole blocks of
-/// B, the last one shifted back to end at `count` (its overlap with the block before is
-/// written twice, with the same values), so that every block is one fixed-length vectorised
-/// loop. Returns whether some point is degenerate (|Sa × Sc|² not above kDegenerate2, or NaN).
+/// product per point. The line's coefficients are read once; the points go in blocks of B
+/// (forEachBlock). Returns whether some point is degenerate (|Sa × Sc|² not above kDegenerate2, or
+/// NaN).
 template <std::size_t B, bool Forces>
 bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolynomials& line,
                   const double* __restrict force, std::size_t forceStride, float* __restrict pos,
@@ -201,8 +212,7 @@ bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolyn
   }
   // Positions, then normals: two loops over the line's blocks, each with fewer values live
   // (its coefficients stay in registers) than one would need.
-  for (std::size_t i0 = 0;; i0 += B) {
-    if (i0 + B > count) i0 = count - B;
+  forEachBlock<B>(count, [&](std::size_t i0) {
     const double* __restrict t = x + i0;
     const double* __restrict f = Forces ? force + i0 : nullptr;
     float* __restrict po = pos + 3 * i0;
@@ -213,10 +223,8 @@ bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolyn
         po[3 * i + k] = static_cast<float>(v);
       }
     }
-    if (i0 + B >= count) break;
-  }
-  for (std::size_t i0 = 0;; i0 += B) {
-    if (i0 + B > count) i0 = count - B;
+  });
+  forEachBlock<B>(count, [&](std::size_t i0) {
     const double* __restrict t = x + i0;
     const double* __restrict f = Forces ? force + i0 : nullptr;
     float* __restrict no = nor + 3 * i0;
@@ -248,8 +256,7 @@ bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolyn
       no[3 * i + 1] = static_cast<float>(nv[1]) * inv;
       no[3 * i + 2] = static_cast<float>(nv[2]) * inv;
     }
-    if (i0 + B >= count) break;
-  }
+  });
   int degenerate = 0;
   for (std::size_t i = 0; i < count; ++i) degenerate |= !(cross2[i] > kDegenerate2);
   return degenerate != 0;
@@ -343,15 +350,18 @@ class TessellationEngine {
   PatchRing ring(const FrameTopology& topo, std::uint32_t k, std::uint32_t* ids) const;
   /// Where the triangles of the patch being tessellated go, row by row.
   struct TriangleRows {
-    std::uint32_t k;                  ///< the patch
+    std::uint32_t k;      ///< the patch
+    double flip;          ///< -1 when its triangles are wound the other way
+    const PatchRing* pr;  ///< its boundary ring (ids at `ring`)
+    const std::uint32_t* ring;
+    std::uint32_t patchBase;          ///< mesh id of its first interior point
     std::size_t triangles;            ///< written so far (the mesh's), the next one's index
     std::uint32_t *rowIds, *prevIds;  ///< mesh ids of the last row and the one before
   };
   void evaluatePatchVertices(const VertexFramePatch& patch, double flip, const PatchRing& pr,
                              const std::uint32_t* ring, std::uint32_t patchBase,
                              TriangleRows* triangles, Mesh& mesh);
-  void writeTriangleRow(TriangleRows& rows, std::uint32_t j, double flip, const PatchRing& pr,
-                        const std::uint32_t* ring, std::uint32_t patchBase, Mesh& mesh);
+  void writeTriangleRow(TriangleRows& rows, std::uint32_t j, Mesh& mesh);
 
   // The layout.
   std::uint32_t n_ = 0, inner_ = 0, frames_ = 0;
@@ -528,7 +538,7 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
   // Interior rows, straight into the mesh (short rows through the line buffer), each
   // followed by the triangles between it and the row before: the triangles' stores, which
   // go to memory, then drain while the next row is computed instead of stalling in a burst.
-  if (triangles) writeTriangleRow(*triangles, 0, flip, pr, ring, patchBase, mesh);
+  if (triangles) writeTriangleRow(*triangles, 0, mesh);
   for (std::uint32_t j = 1; j + 1 < n; ++j) {
     const std::size_t first = std::size_t{patchBase + (j - 1) * inner} * 3;
     float* pos = mesh.positions.data() + first;
@@ -546,9 +556,9 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
     if (degenerate)
       for (std::uint32_t i = 0; i < inner; ++i)
         if (!(rowCross2_[i] > kDegenerate2)) insetNormal(i + 1, j, nor + 3 * i);
-    if (triangles) writeTriangleRow(*triangles, j, flip, pr, ring, patchBase, mesh);
+    if (triangles) writeTriangleRow(*triangles, j, mesh);
   }
-  if (triangles) writeTriangleRow(*triangles, n - 1, flip, pr, ring, patchBase, mesh);
+  if (triangles) writeTriangleRow(*triangles, n - 1, mesh);
 
   // The boundary ring, side by side in each side's own direction (as the ring's ids run):
   // Alpha (v = 0) and Beta (v = 1) are rows, Delta (u = 1) and Gamma (u = 0) columns.
@@ -617,10 +627,11 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
   }
 }
 
-void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j, double flip,
-                                          const PatchRing& pr, const std::uint32_t* ring,
-                                          std::uint32_t patchBase, Mesh& mesh) {
-  const std::uint32_t n = n_, inner = inner_, k = rows.k;
+void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j, Mesh& mesh) {
+  const std::uint32_t n = n_, inner = inner_, k = rows.k, patchBase = rows.patchBase;
+  const double flip = rows.flip;
+  const PatchRing& pr = *rows.pr;
+  const std::uint32_t* ring = rows.ring;
   std::swap(rows.rowIds, rows.prevIds);
   std::uint32_t* rowIds = rows.rowIds;
   const std::uint32_t* prevIds = rows.prevIds;
@@ -708,7 +719,7 @@ void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool
     const PatchRing& pr = patchRings_[k];
     const std::uint32_t* ring = rings_.data() + std::size_t{k} * 4 * n;
     const std::uint32_t patchBase = boundaryCount_ + k * inner * inner;
-    TriangleRows rows{k, triangles, ids0_.data(), ids1_.data()};
+    TriangleRows rows{k, flip, &pr, ring, patchBase, triangles, ids0_.data(), ids1_.data()};
     evaluatePatchVertices(surface.patches[k], flip, pr, ring, patchBase,
                           writeTriangles ? &rows : nullptr, mesh);
     triangles = rows.triangles;
