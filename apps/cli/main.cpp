@@ -22,6 +22,7 @@
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
+#include "rebuild_command.hpp"
 #include "server.hpp"
 #include "spectral_commands.hpp"
 
@@ -585,6 +586,8 @@ int main(int argc, char** argv) {
   CLI::App* compare = compareCommand.add(app);
   cli::ExportCommand exportCommand;
   CLI::App* exportCmd = exportCommand.add(app);
+  cli::RebuildCommand rebuildCommand;
+  CLI::App* rebuild = rebuildCommand.add(app);
 
   try {
     app.parse(argc, argv);
@@ -621,6 +624,7 @@ int main(int argc, char** argv) {
     }
     if (*compare) return compareCommand.run();
     if (*exportCmd) return exportCommand.run();
+    if (*rebuild) return rebuildCommand.run();
     return runInfo(modelPath, json, solveArgs);
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

@@ -100,10 +100,17 @@ std::string serializeModel(const CrossSectionModel& m) {
   std::string out = head("cross-sections", m.name, m.description);
   out += fmt::format(
       "  \"a\": {},\n  \"modes\": {},\n  \"method\": \"{}\",\n  \"parameterization\": \"{}\",\n"
-      "  \"remainder\": {},\n  \"curves\": [\n",
-      m.options.a, m.options.modes,
-      m.options.method == ChainMethod::ExactC2 ? "c2" : "shared-curves",
+      "  \"remainder\": {},\n",
+      m.options.a, m.options.modes, chainMethodName(m.options.method),
       parameterizationName(m.options.parameterization), m.options.remainder);
+  if (m.options.method == ChainMethod::Global) {
+    constexpr const char* kSpacing[] = {"centroids", "mean-distance", "uniform"};
+    out += fmt::format("  \"spacing\": \"{}\",\n  \"ends\": \"{}\",\n",
+                       kSpacing[static_cast<int>(m.options.spacing)],
+                       m.options.ends == ChainEnds::Natural ? "natural" : "estimated");
+    if (!m.options.u.empty()) out += fmt::format("  \"u\": [{}],\n", fmt::join(m.options.u, ", "));
+  }
+  out += "  \"curves\": [\n";
   for (std::size_t i = 0; i < m.curves.size(); ++i)
     out +=
         fmt::format("    {}{}\n", curve(m.curves[i], "    "), i + 1 < m.curves.size() ? "," : "");

@@ -152,6 +152,18 @@ void solveModeTiered(const spectral::ModeBasis& basis,
                      const std::vector<spectral::ConditionData>& conditions, double uStart,
                      double length, std::uint32_t n, SpectralPatch::ModeCoefficients& coef) {
   ModePrecision tier = basis.extended() ? ModePrecision::Extended : ModePrecision::Double;
+  if (basis.nearPolynomial()) {
+    // Mode 0 and short patches (basis.hpp): a near-polynomial basis is evaluated accurately
+    // in double, but its system loses the digits of its condition (~1e3) against data whose
+    // derivative conditions are h^k times smaller than its positions (short chain patches);
+    // solved in long double, the coefficients are exact to double rounding and the chain
+    // stays C2 to rounding at any section count (tests/spectral/global_chain_test.cpp).
+    const double residual =
+        solveMode<spectral::MatrixR>(basis, conditions, uStart, length, n, coef);
+    coef.precision = ModePrecision::Double;
+    if (residual <= kEscalateResidual) return;
+    tier = ModePrecision::Quad;
+  }
   for (;;) {
     double residual = 0.0;
     switch (tier) {
