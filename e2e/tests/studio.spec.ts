@@ -193,10 +193,11 @@ test('an invalid edit shows the error and the page goes on working', async ({ pa
   await expect(page.getByTestId('status')).toContainText('8 vertices');
   await page.screenshot({ path: shot('error.png') });
 
-  // A raw request is refused the same way, and the model stays.
+  // A raw request (with the page's token) is refused the same way, and the model stays.
   const status = await page.evaluate(async () => {
     const r = await fetch('/api/edit', {
       method: 'POST',
+      headers: { 'Content-Type': 'application/json', 'X-Pdesurf-Token': sessionStorage.getItem('pdesurf-token') ?? '' },
       body: JSON.stringify({ op: 'move-vertex', vertex: 9999, position: [0, 0, 0] }),
     });
     return r.status;
