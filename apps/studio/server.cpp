@@ -380,22 +380,22 @@ class StudioServer::Impl {
   /// (every one that changes something) declares a JSON body, which a browser sends to
   /// another origin only after a preflight this server never grants.
   std::optional<HttpError> refusal(const httplib::Request& req) const {
-    const std::string host = req.get_header_value("Host");
-    if (req.get_header_value_count("Host") != 1 ||
-        std::find(hosts_.begin(), hosts_.end(), lowerCase(host)) == hosts_.end())
+    // Exactly one `name` header, its value (any case) one of `allowed`.
+    const auto oneOf = [&req](const char* name, const std::vector<std::string>& allowed) {
+      return req.get_header_value_count(name) == 1 &&
+             std::find(allowed.begin(), allowed.end(), lowerCase(req.get_header_value(name))) !=
+                 allowed.end();
+    };
+    if (!oneOf("Host", hosts_))
       return HttpError{403, fmt::format("request refused: Host {} is not this studio's address "
                                         "{} (a web page of another name is not the studio's)",
-                                        quoted(host), hosts_.front())};
+                                        quoted(req.get_header_value("Host")), hosts_.front())};
     const bool safe = req.method == "GET" || req.method == "HEAD";
     if (safe && !req.path.starts_with("/api")) return std::nullopt;
-    if (req.has_header("Origin")) {
-      const std::string origin = req.get_header_value("Origin");
-      if (req.get_header_value_count("Origin") != 1 ||
-          std::find(origins_.begin(), origins_.end(), lowerCase(origin)) == origins_.end())
-        return HttpError{403, fmt::format("request refused: Origin {} is not the studio's page "
-                                          "{} (another web page may not use the studio)",
-                                          quoted(origin), origins_.front())};
-    }
+    if (req.has_header("Origin") && !oneOf("Origin", origins_))
+      return HttpError{403, fmt::format("request refused: Origin {} is not the studio's page {} "
+                                        "(another web page may not use the studio)",
+                                        quoted(req.get_header_value("Origin")), origins_.front())};
     if (!token_.empty() && (req.get_header_value_count(kTokenHeader) != 1 ||
                             !sameSecret(req.get_header_value(kTokenHeader), token_)))
       return HttpError{403, fmt::format("request refused: missing or wrong {} (open the URL "

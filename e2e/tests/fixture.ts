@@ -111,3 +111,14 @@ export async function meshUpToDate(page: Page): Promise<void> {
 export async function settle(page: Page): Promise<void> {
   await page.evaluate(() => (window as any).__studio.idle());
 }
+
+/** Drags vertex `vertex`'s handle in the frame view by (dx, dy) pixels in `steps` moves,
+ * then waits until the page's edits are answered. */
+export async function dragVertex(page: Page, vertex: number, dx: number, dy: number, steps: number): Promise<void> {
+  const p = await page.evaluate((v) => (window as any).__studio.vertexScreen(v), vertex);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + dx, p.y + dy, { steps });
+  await page.mouse.up();
+  await settle(page);
+}

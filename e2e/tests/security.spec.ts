@@ -6,18 +6,13 @@ import { chromium } from '@playwright/test';
 import { readFileSync } from 'node:fs';
 import { createServer, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
-import { expect, openStudio, settle, test } from './fixture';
+import { dragVertex, expect, openStudio, test } from './fixture';
 
 test('the printed URL opens the studio; the token leaves the address bar and survives a reload', async ({ page, studio }) => {
   await openStudio(page, studio);
   expect(page.url()).toBe(studio.origin);
   expect(await page.evaluate(() => sessionStorage.getItem('pdesurf-token'))).toBe(studio.token);
-  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(3));
-  await page.mouse.move(p.x, p.y);
-  await page.mouse.down();
-  await page.mouse.move(p.x + 20, p.y - 20, { steps: 4 });
-  await page.mouse.up();
-  await settle(page);
+  await dragVertex(page, 3, 20, -20, 4);
   await expect.poll(async () => (await studio.state()).undo).toBe(1);
   // A reload (no token in the address now) keeps working, and so does Save.
   await page.reload();
