@@ -56,11 +56,13 @@ async function startStudio(model) {
     child.on('exit', (code) => reject(new Error(`studio exited with ${code}: ${stderr}`)));
     createInterface({ input: child.stdout }).once('line', (line) => {
       clearTimeout(timer);
-      const m = /(http:\/\/\S+\/)/.exec(line);
+      // The printed URL carries the per-launch token: the page takes it from there.
+      const m = /(http:\/\/\S+\/\?token=[0-9a-f]+)/.exec(line);
       m ? resolve(m[1]) : reject(new Error(`unexpected first line: ${line}`));
     });
   });
-  return { child, url };
+  const { origin, searchParams } = new URL(url);
+  return { child, url, origin, token: searchParams.get('token') };
 }
 
 // Installed before the page's scripts: timestamps of every /api/edit and /api/mesh
@@ -149,7 +151,7 @@ async function main() {
   const root = mkdtempSync(path.join(tmpdir(), 'pdesurf-bench-studio-'));
   const model = path.join(root, 'latency.json');
   execFileSync('python3', [path.join(HERE, 'make_model.py'), model, String(ROWS), String(COLS)], { stdio: 'ignore' });
-  const { child, url } = await startStudio(model);
+  const { child, url, origin, token } = await startStudio(model);
   const browser = await chromium.launch(LAUNCH);
   const results = { model: { rows: ROWS, cols: COLS, frames: ROWS * COLS }, resolution: Number(RESOLUTION) };
   try {
@@ -185,7 +187,7 @@ async function main() {
       return null;
     }, lattice);
     void vertex;
-    const state = await (await fetch(`${url}api/model`)).json();
+    const state = await (await fetch(`${origin}/api/model`, { headers: { 'X-Pdesurf-Token': token } })).json();
     const vs = state.model.vertices;
     const cx = (COLS * 0.5), cy = (ROWS * 0.5);
     let best = 0;
