@@ -240,7 +240,7 @@ int RebuildCommand::run() const {
         "storage: model {} bytes, part of the mesh {} bytes ({:.3g}x; numbers to six "
         "significant digits)\n",
         modelBytes, partBytes, double(modelBytes) / double(partBytes));
-    fmt::print("time: read {:.1f} ms, slice + prepare + fit + solve {:.1f} ms, measure {:.1f} ms\n",
+    fmt::print("(read {:.1f} ms, slice + prepare + fit + solve {:.1f} ms, measure {:.1f} ms)\n",
                readMs, rebuildMs, measureMs);
     return 0;
   } catch (const RebuildUsageError& e) {
