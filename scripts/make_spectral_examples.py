@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generates the spectral and cross-section example models of issue 4 in examples/.
 
-Run from the repository root:
+Usage, from the repository root:
 
     python3 scripts/make_spectral_examples.py [--check] [--pdesurf PATH] [--regions DIR]
 
@@ -426,6 +426,9 @@ def elephant_models(cli, regions, check_only):
 # ---------------------------------------------------------------------------------------
 
 def main(argv):
+    if any(a in ("-h", "--help") for a in argv[1:]):
+        print(__doc__.strip())
+        return 0
     args = argv[1:]
     check_only = "--check" in args
     cli = os.environ.get("PDESURF") or os.path.join(ROOT, "build", "pdesurf")

@@ -15,6 +15,7 @@
 #include "cli_common.hpp"
 #include "export_command.hpp"
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/coons.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
@@ -338,7 +339,7 @@ struct SliceCommand {
     if (outPath.empty())
       std::cout << text;
     else
-      writeTextFile(outPath, text);
+      writeFileAtomically(outPath, text);
     return 0;
   }
 };

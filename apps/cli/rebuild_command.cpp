@@ -11,6 +11,7 @@
 
 #include "cli_common.hpp"
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/occt_loft.hpp"
@@ -183,7 +184,7 @@ int RebuildCommand::run() const {
       }
     }
     if (!partPath.empty()) writeMesh(part, partPath);
-    if (!outPath.empty()) writeTextFile(outPath, serializeModel(rebuilt.model));
+    if (!outPath.empty()) writeFileAtomically(outPath, serializeModel(rebuilt.model));
     const std::size_t modelBytes = storageBytes(rebuilt.model), partBytes = storageBytes(part);
     if (json) {
       Json j = {{"mesh", meshPath},

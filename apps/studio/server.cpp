@@ -35,6 +35,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
@@ -120,37 +121,6 @@ std::string readFile(const fs::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-/// Writes `data` to `path` whole or not at all: a temporary file beside it, synced, then
-/// renamed over `path`. Keeps the mode of a file it replaces.
-void writeFileAtomically(const fs::path& path, std::string_view data) {
-  std::string temp =
-      (path.parent_path() / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
-  const int fd = ::mkstemp(temp.data());
-  if (fd < 0)
-    throw std::runtime_error(
-        fmt::format("{}: cannot create a temporary file: {}", path.string(), std::strerror(errno)));
-  struct stat st {};
-  const mode_t mode = ::stat(path.c_str(), &st) == 0 ? (st.st_mode & 07777) : 0644;
-  bool ok = ::fchmod(fd, mode) == 0;
-  for (std::size_t done = 0; ok && done < data.size();) {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0)
-      ok = false;
-    else
-      done += static_cast<std::size_t>(n);
-  }
-  int error = ok ? 0 : errno;
-  if (ok && ::fsync(fd) != 0) ok = false, error = errno;
-  if (::close(fd) != 0 && ok) ok = false, error = errno;
-  if (ok && ::rename(temp.c_str(), path.c_str()) != 0) ok = false, error = errno;
-  if (!ok) {
-    ::unlink(temp.c_str());
-    throw std::runtime_error(
-        fmt::format("{}: cannot write: {}", path.string(), std::strerror(error)));
-  }
 }
 
 fs::path autosavePath(const fs::path& model) { return fs::path(model.string() + ".autosave"); }
@@ -271,7 +241,7 @@ class Journal {
       busy_ = true;
       lock.unlock();
       try {
-        writeFileAtomically(job.path, serializeModel(job.model));
+        writeFileAtomically(job.path.string(), serializeModel(job.model));
       } catch (const std::exception& e) {
         std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
       }
@@ -620,7 +590,7 @@ class StudioServer::Impl {
       // An untransformed spectral model is saved as its file was (save as: a copy).
       const std::string text =
           session_ ? serializeVertexFrameModel(session_->model()) : spectralText();
-      writeFileAtomically(path, text);
+      writeFileAtomically(path.string(), text);
       fileText_ = text;
       fileModel_ = session_ ? text : serializeModel(spectral_->model());
     } catch (const std::exception& e) {

@@ -5,7 +5,7 @@
 // event (a capture pointermove listener on the frame view's canvas) to the first
 // requestAnimationFrame callback after the surface mesh of that edit was applied.
 //
-//   node bench/studio/latency.mjs [--cli build/pdesurf] [--steps 200] [--stream 300] [--json out.json]
+// Usage: node bench/studio/latency.mjs [--cli build/pdesurf] [--steps 200] [--stream 300] [--json out.json]
 //   (scripts/run_bench_studio runs it with --steps 100 --stream 0; later options win)
 //
 // Two runs: "step" moves the pointer once, waits until that edit's mesh is on screen, then
@@ -14,7 +14,7 @@
 // timed to the first frame showing a mesh at or past the edit that carried it).
 import { spawn, execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
-import { appendFileSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { appendFileSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir, cpus } from 'node:os';
 import path from 'node:path';
 import { createInterface } from 'node:readline';
@@ -22,10 +22,17 @@ import { fileURLToPath } from 'node:url';
 
 const HERE = path.dirname(fileURLToPath(import.meta.url));
 const SOURCE = path.resolve(HERE, '..', '..');
+const args = process.argv.slice(2);
+if (args.includes('--help') || args.includes('-h')) {
+  // The usage is the comment block at the top of this file.
+  const head = readFileSync(fileURLToPath(import.meta.url), 'utf8').split('\n');
+  const end = head.findIndex((line) => !line.startsWith('//'));
+  console.log(head.slice(0, end).map((line) => line.replace(/^\/\/ ?/, '')).join('\n'));
+  process.exit(0);
+}
 const require = createRequire(path.join(SOURCE, 'e2e', 'package.json'));
 const { chromium } = require('@playwright/test');
 
-const args = process.argv.slice(2);
 const opt = (name, dflt) => {
   const i = args.lastIndexOf(`--${name}`);
   return i >= 0 ? args[i + 1] : dflt;

@@ -1,5 +1,5 @@
 // Periodic spectral PDE patches (seed 003, Ugail 2007; seed 002, Fu et al. 2021) as one
-// engine: docs/spectral.md and math-notes §2. A patch is
+// engine: docs/spectral.md and docs/derivations.md §2. A patch is
 //   X(u,v) = A0(u) + Σ_{n=1..M} [An(u) cos nv + Bn(u) sin nv] + R(u,v)
 // where each mode solves the ODE its operator gives it and R is the remainder that makes
 // conditions which are not finite Fourier series hold exactly.
@@ -132,7 +132,8 @@ struct SpectralOptions {
   UPlacement placement = UPlacement::Uniform;
   VParameterization parameterization = VParameterization::ChordLength;
   /// Add the remainder R(u,v) so that curves that are not M-mode Fourier series are met
-  /// exactly (math-notes §2). Off: the surface meets the M-mode truncation of each curve.
+  /// exactly (docs/derivations.md §2.3). Off: the surface meets the M-mode truncation of each
+  /// curve.
   bool remainder = true;
 };
 

@@ -1,4 +1,4 @@
-// The PDE solve (seed 004 §3, math-notes §3; docs/bspline-pde.md): one mask equation per
+// The PDE solve (seed 004 §3; docs/derivations.md §3.2, docs/bspline-pde.md): one mask equation per
 // span pair, T_u P T_vᵀ = 0, split into the unknown block X and the given points:
 // M X Nᵀ = Y = -T_u P₀ T_vᵀ (P₀: the net with its inner block zeroed), X = M⁻¹ Y N⁻ᵀ,
 // evaluated in the low-rank form below (Y has rank ≤ 6 per component).
@@ -45,7 +45,7 @@ std::vector<Mask> masks(KnotType type, std::uint32_t n) {
   return out;
 }
 
-/// M of math-notes §3 in band form: row a (span a+3) has t[r] at column a + r - 2.
+/// M of docs/derivations.md §3.2 in band form: row a (span a+3) has t[r] at column a + r - 2.
 BandedLu factoredSystem(const std::vector<Mask>& t, std::string_view direction) {
   const int m = static_cast<int>(t.size());
   BandedLu lu(m, 2, 1);

@@ -1,4 +1,4 @@
-// Per-mode solution bases of separable periodic operators (math-notes §2): for each
+// Per-mode solution bases of separable periodic operators (docs/derivations.md §2.1–§2.2): for each
 // characteristic root μ of multiplicity m, the functions p_k(x) e^{μ(t-c)} (k < m) on the
 // local parameter t ∈ [0, 1], where c = 1 and x = 1 - t for Re μ > 0 (growing exponentials
 // written as e^{μ(t-1)}, bounded on [0, 1]), c = 0 and x = t otherwise, and the p_k are

@@ -1,4 +1,4 @@
-// Solving and evaluating one spectral patch (math-notes §2; seed 003 §2.1, seed 002 §3.2).
+// Solving and evaluating one spectral patch (docs/derivations.md §2; seed 003 §2.1, seed 002 §3.2).
 #include "spectral/eigen_warnings.hpp"  // first: see the file
 
 #include <algorithm>
@@ -266,7 +266,7 @@ SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, dou
   const bool anyTail = std::any_of(conditions.begin(), conditions.end(),
                                    [](const ConditionData& c) { return !c.tail.empty(); });
   if (anyTail) {
-    // Remainder on the basis of the first truncated mode, M+1 (math-notes §2): cardinal
+    // Remainder on the basis of the first truncated mode, M+1 (docs/derivations.md §2.3): cardinal
     // functions ψ_i with L_j ψ_i = δ_ij, so R = Σ ψ_i(t) d_i(v) meets every condition.
     auto tail = std::make_shared<SpectralTailData>();
     tail->basis = ModeBasis(modeRoots(op, modes + 1, length));

@@ -1,4 +1,4 @@
-// The spectral engine (seeds 002, 003; math-notes §2): conditions, PDE residuals, an
+// The spectral engine (seeds 002, 003; docs/derivations.md §2): conditions, PDE residuals, an
 // independent ODE check of the mode bases, remainder, chains, fitting, spine, errors,
 // tessellation.
 #include <cmath>
