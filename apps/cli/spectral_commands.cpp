@@ -91,7 +91,8 @@ std::string infoText(const SolvedSpectral& solved, const std::string& path, cons
       c1 = std::max(c1, g.c1Relative);
       c2 = std::max(c2, g.c2Relative);
     }
-  const SpectralOperator& op = solved.patchAt(0).op();
+  // A chain's own operator: its patches' are in their local parameters.
+  const SpectralOperator& op = solved.chain ? solved.chain->op : solved.patchAt(0).op();
   if (json) {
     Json j = {{"model", path},
               {"name", name},

@@ -324,6 +324,9 @@ struct CrossSectionChain {
   std::uint32_t rootPatch = 0;  ///< the patch the others were built from
   /// The chain parameter of every curve (global method: in [0, 1]; methods 1 and 2: i).
   std::vector<double> curveU;
+  /// The operator in the chain parameter (a patch's own operator is in its local t: for the
+  /// global method a·h⁶).
+  SpectralOperator op;
 };
 
 /// The name of a method as model files write it: "global", "c2", "shared-curves".

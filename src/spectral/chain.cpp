@@ -371,6 +371,7 @@ CrossSectionChain buildGlobalChain(const std::vector<ConditionData>& data,
   // h^k ∂u^k X, so that its ∂³t, ∂⁴t at the ends are exactly those the system made continuous.
   CrossSectionChain chain;
   chain.method = ChainMethod::Global;
+  chain.op = op;
   chain.curveU = u;
   chain.patches.reserve(patches);
   for (std::uint32_t i = 0; i < patches; ++i) {
@@ -428,6 +429,7 @@ CrossSectionChain buildCrossSectionChain(std::span<const CurveInput> curves,
   if (options.method == ChainMethod::Global) return buildGlobalChain(data, options);
   CrossSectionChain chain;
   chain.method = options.method;
+  chain.op = op;
   for (std::uint32_t i = 0; i < count; ++i) chain.curveU.push_back(i);
   const std::uint32_t modes = options.modes;
   if (exact) {
