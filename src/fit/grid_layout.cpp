@@ -1,6 +1,5 @@
 // A U × V grid of frames on a disk-like mesh, through CGAL's parameterisation onto a square
-// (mean-value coordinates inside a square border placed by arc length: one-to-one, since
-// the square is convex).
+// (iterative authalic: the square border placed by arc length, the inside spread by area).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,9 +11,8 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
-#include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Iterative_authalic_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Square_border_parameterizer_3.h>
-#include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <fmt/format.h>
 #include <Eigen/SparseLU>
 
@@ -33,6 +31,11 @@ namespace SMP = CGAL::Surface_mesh_parameterization;
 /// A lattice point counts as inside a uv triangle when no barycentric coordinate is below
 /// -this: points on the square's border and on shared triangle edges land somewhere.
 constexpr double kInsideTolerance = 1e-9;
+
+/// Rounds of CGAL's iterative authalic parameterisation (its default): each reweights the
+/// mean-value system towards equal area, so frames spread over the mesh by area instead of
+/// crowding where the border pulls (a head's neck).
+constexpr unsigned kAuthalicIterations = 15;
 
 /// The uv triangles in buckets of a regular grid over the unit square, for point location.
 class UvLocator {
@@ -129,14 +132,16 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
         "(one boundary loop, Euler characteristic 1); use --layout with a quad mesh instead",
         source, borders.size(), borders.size() == 1 ? "" : "s", euler));
 
-  // Mean-value coordinates inside a square border (arc length), solved by sparse LU.
+  // Iterative authalic parameterisation (area-preserving as far as it can) inside a square
+  // border placed by arc length, solved by sparse LU.
   using Border = SMP::Square_border_arc_length_parameterizer_3<SurfaceMesh>;
   using LuSolver = CGAL::Eigen_solver_traits<
       Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>>;
-  using Parameterizer = SMP::Mean_value_coordinates_parameterizer_3<SurfaceMesh, Border, LuSolver>;
+  using Parameterizer = SMP::Iterative_authalic_parameterizer_3<SurfaceMesh, Border, LuSolver>;
   auto uvMap = sm.add_property_map<VertexIndex, Point2>("v:uv").first;
   const auto border = CGAL::Polygon_mesh_processing::longest_border(sm).first;
-  const SMP::Error_code status = SMP::parameterize(sm, Parameterizer(), border, uvMap);
+  Parameterizer parameterizer;
+  const SMP::Error_code status = parameterizer.parameterize(sm, border, uvMap, kAuthalicIterations);
   if (status != SMP::OK)
     throw LayoutError(fmt::format("{}: the parameterisation onto a square failed: {}", source,
                                   SMP::get_error_message(status)));
