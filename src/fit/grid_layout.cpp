@@ -1,5 +1,6 @@
 // A U × V grid of frames on a disk-like mesh, through CGAL's parameterisation onto a square
-// (iterative authalic: the square border placed by arc length, the inside spread by area).
+// (mean-value coordinates inside a square border), with the grid's lines placed so that
+// each row and each column of frames covers an equal share of the mesh's area.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,8 +12,9 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
-#include <CGAL/Surface_mesh_parameterization/Iterative_authalic_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Square_border_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <fmt/format.h>
 #include <Eigen/SparseLU>
 
@@ -32,10 +34,9 @@ namespace SMP = CGAL::Surface_mesh_parameterization;
 /// -this: points on the square's border and on shared triangle edges land somewhere.
 constexpr double kInsideTolerance = 1e-9;
 
-/// Rounds of CGAL's iterative authalic parameterisation (its default): each reweights the
-/// mean-value system towards equal area, so frames spread over the mesh by area instead of
-/// crowding where the border pulls (a head's neck).
-constexpr unsigned kAuthalicIterations = 15;
+/// Bins of the area distribution along u and along v (a grid line lands within 1/4096 of
+/// its quantile).
+constexpr int kAreaBins = 4096;
 
 /// The uv triangles in buckets of a regular grid over the unit square, for point location.
 class UvLocator {
@@ -132,16 +133,17 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
         "(one boundary loop, Euler characteristic 1); use --layout with a quad mesh instead",
         source, borders.size(), borders.size() == 1 ? "" : "s", euler));
 
-  // Iterative authalic parameterisation (area-preserving as far as it can) inside a square
-  // border placed by arc length, solved by sparse LU.
+  // Mean-value coordinates inside a square border placed by arc length (one-to-one, the
+  // square being convex), solved by sparse LU. (CGAL 5.5's iterative authalic
+  // parameterizer is compiled with its debugging on: it prints to standard output and
+  // writes last_solve.off into the working directory.)
   using Border = SMP::Square_border_arc_length_parameterizer_3<SurfaceMesh>;
   using LuSolver = CGAL::Eigen_solver_traits<
       Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>>;
-  using Parameterizer = SMP::Iterative_authalic_parameterizer_3<SurfaceMesh, Border, LuSolver>;
+  using Parameterizer = SMP::Mean_value_coordinates_parameterizer_3<SurfaceMesh, Border, LuSolver>;
   auto uvMap = sm.add_property_map<VertexIndex, Point2>("v:uv").first;
   const auto border = CGAL::Polygon_mesh_processing::longest_border(sm).first;
-  Parameterizer parameterizer;
-  const SMP::Error_code status = parameterizer.parameterize(sm, border, uvMap, kAuthalicIterations);
+  const SMP::Error_code status = SMP::parameterize(sm, Parameterizer(), border, uvMap);
   if (status != SMP::OK)
     throw LayoutError(fmt::format("{}: the parameterisation onto a square failed: {}", source,
                                   SMP::get_error_message(status)));
@@ -169,13 +171,41 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
     for (auto& p : uv) std::swap(p.x(), p.y());
   const UvLocator locator(uv, tris);
 
+  // Grid lines at equal shares of area: mean-value coordinates squeeze a cap (a head above
+  // its neck) into the middle of the square, and a uniform grid would give it one frame.
+  // Each triangle's 3D area is binned by its uv centroid; the lines are the quantiles.
+  std::array<std::vector<double>, 2> cumulative;
+  for (auto& c : cumulative) c.assign(kAreaBins + 1, 0.0);
+  for (const auto& t : tris) {
+    const double area = 0.5 * (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm();
+    const Eigen::Vector2d centre = (uv[t[0]] + uv[t[1]] + uv[t[2]]) / 3.0;
+    for (int d = 0; d < 2; ++d)
+      cumulative[d][1 + std::clamp(static_cast<int>(centre[d] * kAreaBins), 0, kAreaBins - 1)] +=
+          area;
+  }
+  for (auto& c : cumulative) {
+    for (int b = 0; b < kAreaBins; ++b) c[b + 1] += c[b];
+    for (double& x : c) x /= c.back();
+  }
+  // The parameter where the area share reaches `share`, linear inside a bin.
+  auto line = [&](int d, double share) {
+    const auto& c = cumulative[d];
+    const auto it = std::lower_bound(c.begin(), c.end(), share);
+    if (it == c.begin()) return 0.0;
+    if (it == c.end()) return 1.0;
+    const auto b = static_cast<int>(it - c.begin()) - 1;
+    const double span = c[b + 1] - c[b];
+    return (b + (span > 0.0 ? (share - c[b]) / span : 0.0)) / kAreaBins;
+  };
+
   // The (2U+1) × (2V+1) lattice of frame vertices, each where its (u, v) lies on the mesh.
   VertexFrameModel model;
   const std::uint32_t nu = 2 * options.u + 1, nv = 2 * options.v + 1;
   model.vertices.reserve(std::size_t{nu} * nv);
   for (std::uint32_t j = 0; j < nv; ++j)
     for (std::uint32_t i = 0; i < nu; ++i) {
-      const Eigen::Vector2d p(static_cast<double>(i) / (nu - 1), static_cast<double>(j) / (nv - 1));
+      const Eigen::Vector2d p(line(0, static_cast<double>(i) / (nu - 1)),
+                              line(1, static_cast<double>(j) / (nv - 1)));
       const auto [t, l] = locator.locate(p);
       model.vertices.push_back(l[0] * xyz[tris[t][0]] + l[1] * xyz[tris[t][1]] +
                                l[2] * xyz[tris[t][2]]);

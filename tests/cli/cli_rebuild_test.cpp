@@ -6,6 +6,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -48,10 +49,11 @@ class CliRebuild : public ::testing::Test {
     std::normal_distribution<double> noise(0.0, 0.05);
     std::string obj;
     for (const Vec3& p : truth.vertices)
-      obj += fmt::format("v {} {} {}\n", p.x() + noise(rng), p.y() + noise(rng), p.z() + noise(rng));
+      obj +=
+          fmt::format("v {} {} {}\n", p.x() + noise(rng), p.y() + noise(rng), p.z() + noise(rng));
     for (const Frame& f : truth.frames)
-      obj += fmt::format("f {} {} {} {}\n", f.vertices[0] + 1, f.vertices[2] + 1,
-                         f.vertices[4] + 1, f.vertices[6] + 1);
+      obj += fmt::format("f {} {} {} {}\n", f.vertices[0] + 1, f.vertices[2] + 1, f.vertices[4] + 1,
+                         f.vertices[6] + 1);
     put("cage.obj", obj);
   }
 
@@ -98,6 +100,10 @@ TEST_F(CliRebuild, AGridOnADiskMeshMakesUTimesVFrames) {
   EXPECT_EQ(model.frames.size(), 12u);
   EXPECT_EQ(model.vertices.size(), 9u * 7u);
   EXPECT_LE(iterationRms(r.out, 1), iterationRms(r.out, 0)) << r.out;
+  // Nothing else is printed or written (CGAL's iterative authalic parameterizer would
+  // print its progress and leave last_solve.off behind).
+  EXPECT_EQ(r.out.rfind("iteration   0 (layout)", 0), 0u) << r.out;
+  EXPECT_EQ(work_.entries(), std::vector<std::string>{"peaks.json"});
 }
 
 TEST_F(CliRebuild, BadLayoutsAndMeshesExitOneNamingTheProblemAndWriteNothing) {
