@@ -7,15 +7,12 @@
 #include <map>
 #include <stdexcept>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
 #include <fmt/format.h>
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include "analysis/triangle_tree.hpp"
 #include "fit/linear_surface.hpp"
 #include "pdesurf/rebuild.hpp"
 
@@ -30,16 +27,12 @@ namespace {
 using fit::LinearSurface;
 using fit::PointWeights;
 
-// Plain doubles: closest points need no exact predicates.
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using Triangles = std::vector<Triangle>;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-Point toPoint(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-Vec3 toVec(const Point& p) { return {p.x(), p.y(), p.z()}; }
+using detail::Point;
+using detail::toPoint;
+using detail::toVec;
+using detail::Tree;
+using detail::Triangle;
+using detail::Triangles;
 
 /// Below this RMS relative to the diagonal the fit is exact to rounding (float meshes
 /// carry 6e-8 relative): nothing is left to lower.
@@ -80,9 +73,7 @@ struct Target {
   double diagonal = 0.0;
 
   explicit Target(const Mesh& mesh) {
-    auto vertex = [&](std::uint32_t v) {
-      return Vec3(mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]);
-    };
+    auto vertex = [&](std::uint32_t v) { return detail::meshVertex(mesh, v); };
     std::vector<double> area(mesh.vertexCount(), 0.0);
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     double total = 0.0;

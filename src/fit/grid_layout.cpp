@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 #include <Eigen/SparseLU>
 
+#include "analysis/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
 
 namespace pdesurf {
@@ -96,9 +97,7 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
   std::vector<VertexIndex> handle(disk.vertexCount());
   std::vector<std::uint32_t> vertexOf;  // surface-mesh vertex -> Mesh vertex
   std::vector<char> used(disk.vertexCount(), 0);
-  auto point = [&](std::uint32_t v) {
-    return Vec3(disk.positions[3 * v], disk.positions[3 * v + 1], disk.positions[3 * v + 2]);
-  };
+  auto point = [&](std::uint32_t v) { return detail::meshVertex(disk, v); };
   std::vector<std::size_t> kept;
   for (std::size_t t = 0; t < disk.triangleCount(); ++t) {
     const std::uint32_t* i = &disk.indices[3 * t];
