@@ -82,7 +82,7 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
                   "mean squared distances")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
-  cmd->add_option("--samples", samples, "vertex-frames: surface samples per patch side")
+  cmd->add_option("--fit-samples", samples, "vertex-frames: surface samples per patch side")
       ->check(CLI::Range(3u, 65u))
       ->capture_default_str();
 }
