@@ -16,6 +16,7 @@
 #include "distance_report.hpp"
 #include "export_command.hpp"
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/coons.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
@@ -339,7 +340,7 @@ struct SliceCommand {
     if (outPath.empty())
       std::cout << text;
     else
-      writeTextFile(outPath, text);
+      writeFileAtomically(outPath, text);
     return 0;
   }
 };
@@ -549,6 +550,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
   studio->add_option("--host", studioOptions.host, "address to listen on")->capture_default_str();
+  studio->add_flag_callback(
+      "--no-token", [&studioOptions] { studioOptions.requireToken = false; },
+      "UNSAFE, for tests only: serve the API without the per-launch token of the printed URL "
+      "(any program of any local user may then read and change the models)");
 
   std::vector<std::uint32_t> fitTerms;
   bool fitUniform = false;

@@ -1,7 +1,8 @@
-// `pdesurf rebuild MESH --as KIND`: a mesh turned into a model file of the given kind
-// (docs/rebuild.md). Each kind is one branch of run() with its own options struct.
+// `pdesurf rebuild`: a mesh rebuilt as a model of one of pdesurf's methods, with its distance
+// to the mesh and its storage (docs/rebuild.md).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,20 +23,30 @@ struct VertexFrameRebuildArgs {
   void add(CLI::App* cmd);
 };
 
+/// Each kind `--as` names is one branch of run() with its own options.
 struct RebuildCommand {
-  std::string meshPath, outPath, kind;
-  std::uint32_t resolution = 17;
-  bool quiet = false;
+  std::string meshPath, outPath, as, partPath, name, ends = "natural";
+  // Cross sections: the slicing (as `pdesurf slice`) and the chain.
+  std::string axis = "z";
+  std::uint32_t count = 25, modes = 8, points = 128;
+  std::vector<double> range, near;
+  bool track = false;
+  double a = 1.0;
+  std::size_t samples = 100000;
+  bool json = false, loft = false, exact = false;
+  // Vertex frames.
   VertexFrameRebuildArgs vertexFrames;
+  std::uint32_t resolution = 17;  ///< samples per patch side for the final distances
+  bool quiet = false;
 
   /// Registers the subcommand on `app`.
   CLI::App* add(CLI::App& app);
-  /// Runs it: 0 on success, 2 for a usage error (after printing it); an invalid mesh or
-  /// layout throws, for main's handlers (exit 1). The model file is written whole at the
-  /// end or not at all.
+  /// Runs it: 0 on success, 2 for a usage error (after printing it); a mesh that cannot be
+  /// rebuilt as asked throws, for main's handlers (exit 1). Nothing is written on failure.
   int run() const;
 
  private:
+  int runCrossSections() const;
   int runVertexFrames() const;
 };
 
