@@ -13,6 +13,7 @@
 
 #include "bspline_commands.hpp"
 #include "cli_common.hpp"
+#include "distance_report.hpp"
 #include "export_command.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/atomic_file.hpp"
@@ -411,18 +412,13 @@ struct CompareCommand {
       std::cout << j.dump(2) << '\n';
       return 0;
     }
-    auto percent = [](double relative) { return fmt::format("{:.3g}%", 100.0 * relative); };
     fmt::print(
         "{}: {} at resolution {}; {}: {}, bounding-box diagonal {:.6g} "
         "(solve {:.3f} ms, tessellate {:.3f} ms, read {:.1f} ms, distance {:.1f} ms)\n",
         built.name, count(built.mesh.triangleCount(), "triangle"), resolution, meshPath,
         count(mesh.triangleCount(), "triangle"), d.diagonal, built.solveMs, built.tessMs, readMs,
         distanceMs);
-    for (const auto& [label, w] : {std::pair{"model -> mesh", &d.aToB}, {"mesh -> model", &d.bToA}})
-      fmt::print("{}  RMS {:.6g} ({})  mean {:.6g} ({})  max {:.6g} ({})\n", label, w->rms,
-                 percent(w->rmsRelative), w->mean, percent(w->meanRelative), w->max,
-                 percent(w->maxRelative));
-    fmt::print("Hausdorff      {:.6g} ({})\n", d.hausdorff, percent(d.hausdorffRelative));
+    cli::printDistances(d);
     return 0;
   }
 };

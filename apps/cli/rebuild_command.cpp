@@ -1,7 +1,11 @@
 #include "rebuild_command.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -10,11 +14,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
+#include "distance_report.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/atomic_file.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model_io.hpp"
 #include "pdesurf/occt_loft.hpp"
+#include "pdesurf/rebuild.hpp"
 #include "pdesurf/section_rebuild.hpp"
 #include "pdesurf/spectral_io.hpp"
 
@@ -44,6 +51,36 @@ SpectralTessellateOptions measureOptions(std::size_t patches) {
 /// surface: 0.01 %, a tenth of the smallest distances compared (0.1 % and up).
 constexpr double kLoftDeflection = 1e-4;
 
+/// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
+Mesh readTarget(const std::string& path) {
+  Mesh mesh = readMesh(path);
+  if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
+  return mesh;
+}
+
+/// A bar on standard error, redrawn in place, when it is a terminal.
+class ProgressBar {
+ public:
+  ProgressBar(std::uint32_t total, bool enabled)
+      : total_(total), enabled_(enabled && ::isatty(STDERR_FILENO) == 1) {}
+  ~ProgressBar() {
+    if (drawn_) fmt::print(stderr, "\r{:{}}\r", "", kWidth + 40);
+  }
+  void update(std::uint32_t done, double rms) {
+    if (!enabled_) return;
+    const auto filled = static_cast<int>(kWidth * std::min(done, total_) / std::max(total_, 1u));
+    fmt::print(stderr, "\rfitting [{:#<{}}{:<{}}] {}/{}  RMS {}", "", filled, "", kWidth - filled,
+               done, total_, percent(rms));
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+
+ private:
+  static constexpr int kWidth = 30;
+  std::uint32_t total_;
+  bool enabled_, drawn_ = false;
+};
+
 Json oneWay(const OneWayDistance& d) {
   return {{"rms", d.rms},   {"rms_relative", d.rmsRelative},
           {"mean", d.mean}, {"mean_relative", d.meanRelative},
@@ -52,15 +89,42 @@ Json oneWay(const OneWayDistance& d) {
 
 }  // namespace
 
+void VertexFrameRebuildArgs::add(CLI::App* cmd) {
+  cmd->add_option("--layout", layoutPath,
+                  "vertex-frames: a quad mesh (OBJ, OFF, PLY) whose quads become the frames");
+  cmd->add_option("--grid", grid,
+                  "vertex-frames: U V, a grid of U × V frames laid on a mesh with one boundary "
+                  "loop through its parameterisation onto a square")
+      ->expected(2)
+      ->check(CLI::Range(1u, 1000u));
+  cmd->add_option("--iterations", iterations, "vertex-frames: most fitting iterations")
+      ->check(CLI::Range(0u, 100000u))
+      ->capture_default_str();
+  cmd->add_option("--tolerance", tolerance,
+                  "vertex-frames: stop when an iteration lowers the RMS by less than this "
+                  "fraction of it")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--smoothness", smoothness,
+                  "vertex-frames: weight of the Laplacian of the vertex positions against the "
+                  "mean squared distances")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--fit-samples", samples, "vertex-frames: surface samples per patch side")
+      ->check(CLI::Range(3u, 65u))
+      ->capture_default_str();
+}
+
 CLI::App* RebuildCommand::add(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "rebuild",
       "Rebuild a mesh as a PDE model (cross-sections: slice it, align and fit the sections, "
-      "join them by the global C4 chain); print its distance to the mesh and its storage");
+      "join them by the global C4 chain; vertex-frames: fit a layout of frames to it); print "
+      "its distance to the mesh and its storage");
   cmd->add_option("mesh", meshPath, "mesh file: .off .obj .ply .stl")->required();
   cmd->add_option("--as", as, "the kind of model to build")
       ->required()
-      ->check(CLI::IsMember({"cross-sections"}));
+      ->check(CLI::IsMember({"cross-sections", "vertex-frames"}));
   cmd->add_option("-o,--output", outPath, "model file to write (JSON; whole or not at all)");
   cmd->add_option("--axis", axis, "cross-sections: axis the slicing planes are perpendicular to")
       ->check(CLI::IsMember({"x", "y", "z"}))
@@ -106,12 +170,28 @@ CLI::App* RebuildCommand::add(CLI::App& app) {
                 "also loft the same prepared sections with Open CASCADE "
                 "(BRepOffsetAPI_ThruSections through periodic interpolating B-splines) and "
                 "measure it the same way: the peer a CAD user would reach for");
-  cmd->add_flag("--json", json, "print JSON");
+  cmd->add_flag("--json", json, "cross-sections: print JSON");
+  cmd->add_option("--resolution", resolution,
+                  "vertex-frames: samples per patch side for the distances printed at the end, "
+                  "as for compare")
+      ->check(CLI::Range(2u, 4097u))
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", quiet, "vertex-frames: print nothing on success");
+  vertexFrames.add(cmd);
   return cmd;
 }
 
 int RebuildCommand::run() const {
   try {
+    return as == "vertex-frames" ? runVertexFrames() : runCrossSections();
+  } catch (const RebuildUsageError& e) {
+    fmt::print(stderr, "pdesurf: {}\n", e.what());
+    return kExitUsage;
+  }
+}
+
+int RebuildCommand::runCrossSections() const {
+  {
     if (!std::isfinite(a) || a == 0.0)
       throw RebuildUsageError(fmt::format("--a {}: a must be finite and non-zero", a));
     if (points < 2 * modes + 1)
@@ -214,7 +294,6 @@ int RebuildCommand::run() const {
       std::cout << j.dump(2) << '\n';
       return 0;
     }
-    auto percent = [](double relative) { return fmt::format("{:.3g}%", 100.0 * relative); };
     fmt::print(
         "{}: {} sections along {} from {} to {}, {} modes{}, global C4 chain (a = {}, {} "
         "ends){}\n",
@@ -244,10 +323,67 @@ int RebuildCommand::run() const {
     fmt::print("(read {:.1f} ms, slice + prepare + fit + solve {:.1f} ms, measure {:.1f} ms)\n",
                readMs, rebuildMs, measureMs);
     return 0;
-  } catch (const RebuildUsageError& e) {
-    fmt::print(stderr, "pdesurf: {}\n", e.what());
-    return kExitUsage;
   }
+}
+
+int RebuildCommand::runVertexFrames() const {
+  const VertexFrameRebuildArgs& args = vertexFrames;
+  if (outPath.empty()) throw RebuildUsageError("--as vertex-frames: -o MODEL.json is required");
+  if (args.layoutPath.empty() == args.grid.empty())
+    throw RebuildUsageError("--as vertex-frames: give one of --layout QUADS and --grid U V");
+
+  auto t0 = Clock::now();
+  const Mesh mesh = readTarget(meshPath);
+  VertexFrameModel layout;
+  if (!args.layoutPath.empty()) {
+    layout = quadLayout(readPolygonMesh(args.layoutPath), args.layoutPath);
+  } else {
+    layout = gridLayout(mesh, {args.grid[0], args.grid[1]}, meshPath);
+  }
+  layout.name = std::filesystem::path(meshPath).stem().string() + " (vertex frames)";
+  const double layoutMs = msSince(t0);
+
+  FitOptions options;
+  options.maxIterations = args.iterations;
+  options.tolerance = args.tolerance;
+  options.smoothness = args.smoothness;
+  options.samplesPerSide = args.samples;
+  ProgressBar bar(args.iterations, !quiet);
+  options.onIteration = [&](const FitIteration& it) {
+    bar.update(it.iteration, it.measure.rms());
+    if (quiet) return;
+    const FitMeasure& m = it.measure;
+    fmt::print(
+        "iteration {:>3}{}: RMS {}  surface -> mesh RMS {} mean {} max {}  mesh -> surface RMS "
+        "{} mean {} max {}\n",
+        it.iteration, it.iteration == 0 ? " (layout)" : fmt::format(" (step {:g})", it.step),
+        percent(m.rms()), percent(m.rmsToMesh), percent(m.meanToMesh), percent(m.maxToMesh),
+        percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel));
+  };
+  t0 = Clock::now();
+  FitResult fitted;
+  try {
+    fitted = fitVertexFrames(layout, mesh, options);
+  } catch (const std::invalid_argument& e) {
+    throw MeshIoError(fmt::format("{}: {}", meshPath, e.what()));
+  }
+  const double fitMs = msSince(t0);
+
+  writeFileAtomically(outPath, serializeVertexFrameModel(fitted.model));
+  if (quiet) return 0;
+  const VertexFrameSurface surface = solve(fitted.model);
+  const MeshDistance d = meshDistance(tessellate(surface, {resolution}), mesh);
+  fmt::print("{}: {}\n", outPath, fitted.stopReason);
+  fmt::print("{}: {}, {}, {} -> {} (layout {:.1f} ms, fit {:.1f} ms)\n", layout.name,
+             count(fitted.model.frames.size(), "frame"),
+             count(fitted.model.vertices.size(), "vertex"),
+             count(fitted.iterations.size() - 1, "iteration"), outPath, layoutMs, fitMs);
+  fmt::print("{} at resolution {}; {}: {}, bounding-box diagonal {:.6g}\n", outPath, resolution,
+             meshPath, count(mesh.triangleCount(), "triangle"), d.diagonal);
+  printDistances(d);
+  fmt::print("storage        {} bytes (numbers to six significant digits)\n",
+             storageBytes(fitted.model));
+  return 0;
 }
 
 }  // namespace pdesurf::cli
