@@ -13,6 +13,7 @@
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/mesh_slice.hpp"
+#include "pdesurf/section_rebuild.hpp"
 
 namespace {
 
@@ -103,6 +104,36 @@ BENCHMARK(BM_DistanceSpheres)
     ->Args({256, 2})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+
+/// The elephant's standing leg (docs/rebuild.md) rebuilt from K sections of 64 points with
+/// 8 modes: slicing, preparing, fitting and solving the global chain, what `pdesurf rebuild`
+/// does before it measures. Issue 12's target: under 50 ms at K = 49.
+SectionRebuildOptions legOptions(std::uint32_t count) {
+  SectionRebuildOptions o;
+  o.slice.axis = Axis::Y;
+  o.slice.count = count;
+  o.slice.range = {-0.45, -0.32};
+  o.slice.near = Vec3(0.117, -0.4, -0.045);
+  o.prep.points = 64;
+  o.modes = 8;
+  return o;
+}
+
+void BM_RebuildElephantLeg(benchmark::State& state) {
+  const Mesh& mesh = elephant();
+  const SectionRebuildOptions o = legOptions(static_cast<std::uint32_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(rebuildFromSections(mesh, o));
+  state.counters["sections"] = static_cast<double>(o.slice.count);
+}
+BENCHMARK(BM_RebuildElephantLeg)->Arg(25)->Arg(49)->Unit(benchmark::kMillisecond);
+
+/// The baseline of the same run: slicing the same planes alone (the rebuild's first step).
+void BM_SliceElephantLeg(benchmark::State& state) {
+  const Mesh& mesh = elephant();
+  const SectionRebuildOptions o = legOptions(static_cast<std::uint32_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(sliceMesh(mesh, o.slice));
+}
+BENCHMARK(BM_SliceElephantLeg)->Arg(25)->Arg(49)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

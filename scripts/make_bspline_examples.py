@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generates the B-spline PDE example models of issue 5 (seed 004) in examples/.
 
-Run from the repository root:
+Usage, from the repository root:
 
     python3 scripts/make_bspline_examples.py [--check]
 
@@ -168,6 +168,9 @@ def dome():
 
 
 def main(argv):
+    if any(a in ("-h", "--help") for a in argv[1:]):
+        print(__doc__.strip())
+        return 0
     models = [wave(), catenoid(), spiral(), blend(), tube(), dome()]
     return write_models([(m["name"], dump(m, 12) + "\n") for m in models], "--check" in argv[1:],
                         "make_bspline_examples.py")

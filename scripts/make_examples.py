@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generates the example vertex-frame models in examples/*.json.
 
-Run from the repository root:  python3 scripts/make_examples.py [--check]
+Usage, from the repository root:  python3 scripts/make_examples.py [--check]
 
 Standard library only and deterministic: the same files come out every run. Numbers
 are rounded to 6 significant digits and each vertex, frame and force takes one line,
@@ -658,6 +658,9 @@ def write_models(named_texts, check_only, script):
 
 
 def main(argv):
+    if any(a in ("-h", "--help") for a in argv[1:]):
+        print(__doc__.strip())
+        return 0
     named_texts = []
     for make in MODELS:
         model = make()

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Generates the spectral and cross-section example models of issue 4 in examples/.
 
-Run from the repository root:
+Usage, from the repository root:
 
     python3 scripts/make_spectral_examples.py [--check] [--pdesurf PATH] [--regions DIR]
 
@@ -14,12 +14,12 @@ Standard library only and deterministic: the same files come out every run.
   vase-sections.json   a fluted vase from 12 planar cross sections given as points
                        (cross-sections model, seed 002 method 2: exact C2 joins)
   elephant-leg.json    a leg and the trunk of CGAL's elephant.off (Debian libcgal-demo),
-  elephant-trunk.json  rebuilt as cross-section models from `pdesurf slice` sections
+  elephant-trunk.json  rebuilt by `pdesurf rebuild --as cross-sections` (25 sections)
 
-The elephant models need the CLI: `pdesurf slice --near/--track` cuts the mesh (PATH from
---pdesurf, else $PDESURF, else build/pdesurf) and scripts/cgal_data finds the mesh. The
-part of the mesh each one rebuilds is also written as an OBJ (default out/, --regions)
-so that `pdesurf compare` can measure the distance both ways (docs/examples.md).
+The elephant models need the CLI (PATH from --pdesurf, else $PDESURF, else build/pdesurf)
+and scripts/cgal_data finds the mesh. The part of the mesh each one rebuilds is also
+written as an OBJ (default out/, --regions) so that `pdesurf compare` can measure the
+distance both ways (docs/examples.md).
 
 With --check nothing is written: the files on disk are compared with what would be.
 """
@@ -29,6 +29,7 @@ import math
 import os
 import subprocess
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from make_examples import write_models  # noqa: E402  (one writer for every generator)
@@ -359,27 +360,25 @@ def vase_sections():
 
 
 # ---------------------------------------------------------------------------------------
-# The elephant: sections from `pdesurf slice`
+# The elephant: rebuilt by `pdesurf rebuild --as cross-sections`
 
-# The parts, found by slicing elephant.off (y up; extent y in [-0.5, 0.5]) and counting the
-# loops of each plane. The standing leg whose foot is at x = 0.12, z = -0.05 is one loop,
-# with the other legs' loops beside it (--near picks it), from above its sole (y = -0.475)
-# to below the belly (y = -0.31, where it merges with the body); it is rebuilt from
-# y = -0.45 to -0.32. The raised trunk is the only loop of its planes from y = 0.30 (above
-# the tusks and the head, where the planes cut two or three loops) to y = 0.48 (the tip);
-# it leans by about 45° at y = 0.30 and curls over above y = 0.43, where horizontal planes
-# cut it obliquely; below y = 0.34 a fold of the mesh gives its sections a flap. So it is
-# rebuilt where it stands most upright, from y = 0.345 to 0.42
-# (--track follows it plane by plane). Six sections each: a c2 chain of more sections
-# carries the slices' noise from patch to patch through the matched derivatives and
-# rebuilds the parts worse (docs/examples.md).
+# The parts, found by slicing elephant.off (y up; extent y in [-0.5, 0.5]). The standing leg
+# whose foot is at x = 0.12, z = -0.05 is one loop, with the other legs' loops beside it
+# (--near picks it), from above its sole (y = -0.475) to below the belly (y = -0.31, where it
+# merges with the body); it is rebuilt from y = -0.45 to -0.32. The raised trunk is the only
+# loop of its planes from y = 0.30 (above the tusks and the head, where the planes cut two or
+# three loops) to y = 0.48 (the tip); it leans by about 45° at y = 0.30 and curls over above
+# y = 0.43, where horizontal planes cut it obliquely; below y = 0.34 a fold of the mesh gives
+# its sections a flap. So it is rebuilt where it stands most upright, from y = 0.345 to 0.42
+# (--track follows it plane by plane). 25 sections each: the global chain gets no worse with
+# more sections (docs/rebuild.md measures 7 to 49).
 ELEPHANT_PARTS = [
-    {"name": "elephant-leg", "axis": "y", "range": (-0.45, -0.32), "count": 6,
-     "near": (0.117, -0.4, -0.045), "track": False, "radius": 0.09,
+    {"name": "elephant-leg", "axis": "y", "range": (-0.45, -0.32), "count": 25,
+     "near": (0.117, -0.4, -0.045), "track": False,
      "label": "The standing leg", "where": "foot at x = 0.12, z = -0.05; y = -0.45 to -0.32, "
      "from above the foot to below the belly"},
-    {"name": "elephant-trunk", "axis": "y", "range": (0.345, 0.42), "count": 6,
-     "near": (0.15, 0.345, 0.17), "track": True, "radius": 0.09,
+    {"name": "elephant-trunk", "axis": "y", "range": (0.345, 0.42), "count": 25,
+     "near": (0.15, 0.345, 0.17), "track": True,
      "label": "The raised trunk", "where": "y = 0.345 to 0.42, where it stands most upright"},
 ]
 
@@ -393,204 +392,43 @@ def elephant_path():
     return path if os.path.isabs(path) else os.path.join(ROOT, path)
 
 
-def slice_run(cli, mesh, axis, lo, hi, count, near, track):
-    args = [cli, "slice", mesh, "--axis", axis, "--count", str(count),
-            "--range", repr(lo), repr(hi), "--near"] + [repr(x) for x in near]
-    if track:
-        args.append("--track")
-    done = subprocess.run(args, cwd=ROOT, capture_output=True, text=True)
-    if done.returncode != 0:
-        raise RuntimeError("%s failed: %s" % (" ".join(args), done.stderr.strip()))
-    return json.loads(done.stdout)["planes"]
-
-
-def slice_part(cli, mesh, part):
-    """The part's sections at the chain_spacing positions over its range: one
-    `pdesurf slice --range --count` per run of equal gaps (the root's, then the wider
-    ones), each run after the first starting near the previous run's last section."""
-    lo, hi = part["range"]
-    planes = [lo + x for x in chain_spacing(part["count"], hi - lo)]
-    planes[-1] = hi
-    gaps = [round(b - a, 12) for a, b in zip(planes, planes[1:])]
-    k = "xyz".index(part["axis"])
-    out = []
-    near = part["near"]
-    i = 0
-    while i < len(gaps):
-        j = i
-        while j + 1 < len(gaps) and gaps[j + 1] == gaps[i]:
-            j += 1
-        run = slice_run(cli, mesh, part["axis"], planes[i], planes[j + 1], j + 2 - i, near,
-                        part["track"])
-        out += run if not out else run[1:]
-        last = out[-1]["points"]
-        near = [sum(p[m] for p in last) / len(last) for m in range(3)]
-        near[k] = out[-1]["coordinate"]
-        i = j + 1
-    return out
-
-
-def start_on_ray(points, k, reference):
-    """The loop (counter-clockwise seen from +axis k, as slice gives it) rotated to start
-    where the ray from its centroid along in-plane direction `reference` leaves it, that
-    point inserted: so v = 0 sits on the same side of every section and the chain is not
-    twisted by where each loop happened to start."""
-    u, w = (k + 1) % 3, (k + 2) % 3
-    n = len(points)
-    cu = sum(p[u] for p in points) / n
-    cw = sum(p[w] for p in points) / n
-    du, dw = reference
-    best = None
-    for i in range(n):
-        a, b = points[i], points[(i + 1) % n]
-        # Solve c + s d = a + t (b - a), s > 0, t in [0, 1).
-        eu, ew = b[u] - a[u], b[w] - a[w]
-        det = du * (-ew) - dw * (-eu)
-        if abs(det) < 1e-300:
-            continue
-        ru, rw = a[u] - cu, a[w] - cw
-        s = (ru * (-ew) - rw * (-eu)) / det
-        t = (du * rw - dw * ru) / det
-        if s > 0 and 0 <= t < 1 and (best is None or s > best[0]):
-            best = (s, i, t)
-    if best is None:
-        raise RuntimeError("a section does not surround its centroid")
-    _, i, t = best
-    a, b = points[i], points[(i + 1) % n]
-    start = [a[j] + t * (b[j] - a[j]) for j in range(3)]
-    start[k] = a[k]
-    rest = points[i + 1:] + points[:i + 1]
-    if t == 0:
-        rest = rest[:-1]
-        start = list(a)
-    out = [start] + [list(p) for p in rest]
-    # Drop points that coincide with the inserted one (t ≈ 0 or 1).
-    return [p for j, p in enumerate(out)
-            if j == 0 or max(abs(p[m] - out[j - 1][m]) for m in range(3)) > 1e-12]
-
-
-def read_off(path):
-    tokens = []
-    with open(path) as f:
-        for line in f:
-            line = line.split("#", 1)[0]
-            tokens += line.split()
-    if tokens[0] != "OFF":
-        raise RuntimeError("%s: not an OFF file" % path)
-    nv, nf = int(tokens[1]), int(tokens[2])
-    pos = 4
-    vertices = []
-    for _ in range(nv):
-        vertices.append(tuple(float(x) for x in tokens[pos:pos + 3]))
-        pos += 3
-    faces = []
-    for _ in range(nf):
-        n = int(tokens[pos])
-        ids = [int(x) for x in tokens[pos + 1:pos + 1 + n]]
-        pos += n + 1
-        for j in range(1, n - 1):
-            faces.append((ids[0], ids[j], ids[j + 1]))
-    return vertices, faces
-
-
-def clip(polygon, k, c, keep_above):
-    """The part of a convex polygon (list of 3-tuples) on one side of p[k] = c."""
-    out = []
-    for i, p in enumerate(polygon):
-        q = polygon[(i + 1) % len(polygon)]
-        pin = p[k] >= c if keep_above else p[k] <= c
-        qin = q[k] >= c if keep_above else q[k] <= c
-        if pin:
-            out.append(p)
-        if pin != qin:
-            t = (c - p[k]) / (q[k] - p[k])
-            x = [p[m] + t * (q[m] - p[m]) for m in range(3)]
-            x[k] = c
-            out.append(tuple(x))
-    return out
-
-
-def write_region(vertices, faces, planes, part, path):
-    """The mesh surface that the model rebuilds, written as OBJ: the triangles clipped to the
-    slab between the end planes, kept where their centroid lies within part["radius"] (in
-    the plane) of the sections' centroid line, so that the other legs are left out."""
-    k = "xyz".index(part["axis"])
-    u, w = (k + 1) % 3, (k + 2) % 3
-    lo, hi = planes[0]["coordinate"], planes[-1]["coordinate"]
-    cents = []
-    for pl in planes:
-        pts = pl["points"]
-        cents.append((pl["coordinate"], sum(p[u] for p in pts) / len(pts),
-                      sum(p[w] for p in pts) / len(pts)))
-
-    def centre(c):
-        c = min(max(c, cents[0][0]), cents[-1][0])
-        for (c0, u0, w0), (c1, u1, w1) in zip(cents, cents[1:]):
-            if c0 <= c <= c1:
-                t = (c - c0) / (c1 - c0)
-                return u0 + t * (u1 - u0), w0 + t * (w1 - w0)
-        return cents[-1][1], cents[-1][2]
-
-    points, index, triangles = [], {}, []
-
-    def vertex(p):
-        key = tuple(float(repr(x)) for x in p)
-        if key not in index:
-            index[key] = len(points) + 1
-            points.append(key)
-        return index[key]
-
-    for f in faces:
-        poly = clip(clip([vertices[i] for i in f], k, lo, True), k, hi, False)
-        if len(poly) < 3:
-            continue
-        g = [sum(p[m] for p in poly) / len(poly) for m in range(3)]
-        cu, cw = centre(g[k])
-        if math.hypot(g[u] - cu, g[w] - cw) > part["radius"]:
-            continue
-        ids = [vertex(p) for p in poly]
-        for j in range(1, len(ids) - 1):
-            if len({ids[0], ids[j], ids[j + 1]}) == 3:
-                triangles.append((ids[0], ids[j], ids[j + 1]))
-    lines = ["# %s: the surface of elephant.off that %s.json rebuilds, clipped to %s in "
-             "[%r, %r] (%d triangles)" % (part["name"], part["name"], part["axis"], lo, hi,
-                                          len(triangles))]
-    lines += ["v %r %r %r" % p for p in points]
-    lines += ["f %d %d %d" % t for t in triangles]
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return len(triangles)
-
-
 def elephant_models(cli, regions, check_only):
+    """Each part as `pdesurf rebuild` writes it (the part of the mesh it rebuilds goes to
+    REGIONS/NAME-region.obj unless check_only), with its description."""
     mesh = elephant_path()
-    vertices, faces = read_off(mesh)
     models = []
-    for part in ELEPHANT_PARTS:
-        planes = slice_part(cli, mesh, part)
-        k = "xyz".index(part["axis"])
-        curves = [{"points": start_on_ray(pl["points"], k, (1.0, 0.0))} for pl in planes]
-        models.append({
-            "type": "cross-sections", "name": part["name"],
-            "description": "%s of CGAL's elephant.off (%s), rebuilt from %d horizontal "
-                           "sections cut by pdesurf slice --near%s as a seed 002 sixth-order "
-                           "cross-section patch." % (part["label"], part["where"], len(planes),
-                                                     " --track" if part["track"] else ""),
-            "a": 1, "modes": 6, "method": "c2", "parameterization": "chord-length",
-            "remainder": True, "curves": curves})
-        if not check_only:
-            n = write_region(vertices, faces, planes, part,
-                             os.path.join(regions, part["name"] + "-region.obj"))
-            print("%s: %d sections; region of %d triangles -> %s"
-                  % (part["name"], len(planes), n,
-                     os.path.relpath(os.path.join(regions, part["name"] + "-region.obj"), ROOT)))
+    with tempfile.TemporaryDirectory() as tmp:
+        for part in ELEPHANT_PARTS:
+            model_path = os.path.join(tmp, part["name"] + ".json")
+            region = os.path.join(regions if not check_only else tmp, part["name"] + "-region.obj")
+            os.makedirs(os.path.dirname(region), exist_ok=True)
+            args = [cli, "rebuild", mesh, "--as", "cross-sections", "--axis", part["axis"],
+                    "--range", repr(part["range"][0]), repr(part["range"][1]),
+                    "--count", str(part["count"]), "--near"] + [repr(x) for x in part["near"]]
+            args += ["--track"] if part["track"] else []
+            args += ["--name", part["name"], "-o", model_path, "--part", region,
+                     "--samples", "20000"]
+            done = subprocess.run(args, cwd=ROOT, capture_output=True, text=True)
+            if done.returncode != 0:
+                raise RuntimeError("%s failed: %s" % (" ".join(args), done.stderr.strip()))
+            with open(model_path) as f:
+                model = json.load(f)
+            model["description"] = (
+                "%s of CGAL's elephant.off (%s), rebuilt by pdesurf rebuild --as cross-sections "
+                "from %d sections: a global C4 chain of sixth-order patches."
+                % (part["label"], part["where"], part["count"]))
+            models.append(model)
+            if not check_only:
+                print("%s: %s" % (part["name"], done.stdout.splitlines()[2].strip()))
     return models
 
 
 # ---------------------------------------------------------------------------------------
 
 def main(argv):
+    if any(a in ("-h", "--help") for a in argv[1:]):
+        print(__doc__.strip())
+        return 0
     args = argv[1:]
     check_only = "--check" in args
     cli = os.environ.get("PDESURF") or os.path.join(ROOT, "build", "pdesurf")
@@ -603,7 +441,7 @@ def main(argv):
         cli = os.path.abspath(cli)
 
     models = [(shell(), 12), (klein_bottle(), 12), (membrane(), 12), (vase_sections(), 8)]
-    models += [(m, 7) for m in elephant_models(cli, regions, check_only)]
+    models += [(m, 9) for m in elephant_models(cli, regions, check_only)]
     return write_models([(m["name"], dump(m, digits) + "\n") for m, digits in models],
                         check_only, "make_spectral_examples.py")
 

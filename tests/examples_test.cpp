@@ -62,7 +62,7 @@ TEST_P(Example, TessellatesToAWatertightOrientedMeshThatSurvivesEveryFormat) {
   EXPECT_EQ(stats.boundaryEdges, openModelEdges * (n - 1));
   EXPECT_EQ(stats.inconsistentlyOrientedEdges, 0u);
   EXPECT_EQ(testing::duplicatePositions(mesh), 0u);
-  EXPECT_GT(testing::minCornerNormalAgreement(mesh), -0.5);  // no normal points backwards
+  EXPECT_GT(testing::minCornerNormalAgreement(mesh), testing::kNoBackwardNormals);
 
   const fs::path dir =
       fs::temp_directory_path() / ("pdesurf-example-" + std::to_string(::getpid()));

@@ -14,8 +14,10 @@
 
 #include "bspline_commands.hpp"
 #include "cli_common.hpp"
+#include "distance_report.hpp"
 #include "export_command.hpp"
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/coons.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
@@ -23,6 +25,7 @@
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
+#include "rebuild_command.hpp"
 #include "server.hpp"
 #include "spectral_commands.hpp"
 
@@ -338,7 +341,7 @@ struct SliceCommand {
     if (outPath.empty())
       std::cout << text;
     else
-      writeTextFile(outPath, text);
+      writeFileAtomically(outPath, text);
     return 0;
   }
 };
@@ -410,18 +413,13 @@ struct CompareCommand {
       std::cout << j.dump(2) << '\n';
       return 0;
     }
-    auto percent = [](double relative) { return fmt::format("{:.3g}%", 100.0 * relative); };
     fmt::print(
         "{}: {} at resolution {}; {}: {}, bounding-box diagonal {:.6g} "
         "(solve {:.3f} ms, tessellate {:.3f} ms, read {:.1f} ms, distance {:.1f} ms)\n",
         built.name, count(built.mesh.triangleCount(), "triangle"), resolution, meshPath,
         count(mesh.triangleCount(), "triangle"), d.diagonal, built.solveMs, built.tessMs, readMs,
         distanceMs);
-    for (const auto& [label, w] : {std::pair{"model -> mesh", &d.aToB}, {"mesh -> model", &d.bToA}})
-      fmt::print("{}  RMS {:.6g} ({})  mean {:.6g} ({})  max {:.6g} ({})\n", label, w->rms,
-                 percent(w->rmsRelative), w->mean, percent(w->meanRelative), w->max,
-                 percent(w->maxRelative));
-    fmt::print("Hausdorff      {:.6g} ({})\n", d.hausdorff, percent(d.hausdorffRelative));
+    cli::printDistances(d);
     return 0;
   }
 };
@@ -561,6 +559,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
   studio->add_option("--host", studioOptions.host, "address to listen on")->capture_default_str();
+  studio->add_flag_callback(
+      "--no-token", [&studioOptions] { studioOptions.requireToken = false; },
+      "UNSAFE, for tests only: serve the API without the per-launch token of the printed URL "
+      "(any program of any local user may then read and change the models)");
 
   std::vector<std::uint32_t> fitTerms;
   bool fitUniform = false;
@@ -594,6 +596,8 @@ int main(int argc, char** argv) {
   CLI::App* compare = compareCommand.add(app);
   cli::ExportCommand exportCommand;
   CLI::App* exportCmd = exportCommand.add(app);
+  cli::RebuildCommand rebuildCommand;
+  CLI::App* rebuild = rebuildCommand.add(app);
 
   try {
     app.parse(argc, argv);
@@ -634,6 +638,7 @@ int main(int argc, char** argv) {
     }
     if (*compare) return compareCommand.run();
     if (*exportCmd) return exportCommand.run();
+    if (*rebuild) return rebuildCommand.run();
     return runInfo(modelPath, json, solveArgs);
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

@@ -91,7 +91,8 @@ std::string infoText(const SolvedSpectral& solved, const std::string& path, cons
       c1 = std::max(c1, g.c1Relative);
       c2 = std::max(c2, g.c2Relative);
     }
-  const SpectralOperator& op = solved.patchAt(0).op();
+  // A chain's own operator: its patches' are in their local parameters.
+  const SpectralOperator& op = solved.chain ? solved.chain->op : solved.patchAt(0).op();
   if (json) {
     Json j = {{"model", path},
               {"name", name},
@@ -103,7 +104,7 @@ std::string infoText(const SolvedSpectral& solved, const std::string& path, cons
               {"bbox", {{"min", pointJson(lo)}, {"max", pointJson(hi)}}},
               {"patch_details", std::move(patchList)}};
     if (solved.chain) {
-      j["method"] = solved.chain->method == ChainMethod::ExactC2 ? "c2" : "shared-curves";
+      j["method"] = chainMethodName(solved.chain->method);
       j["joints"] = std::move(joints);
     }
     return j.dump(2) + "\n";
@@ -118,9 +119,8 @@ std::string infoText(const SolvedSpectral& solved, const std::string& path, cons
   out += fmt::format("conditions largest error {:.3g} (relative to the curves' size)\n",
                      worstCondition);
   if (solved.chain)
-    out += fmt::format(
-        "joints     {} ({}): largest relative gap C0 {:.3g}, C1 {:.3g}, C2 {:.3g}\n", joints.size(),
-        solved.chain->method == ChainMethod::ExactC2 ? "c2" : "shared-curves", c0, c1, c2);
+    out += fmt::format("joints     {} ({}): largest relative gap C0 {:.3g}, C1 {:.3g}, C2 {:.3g}\n",
+                       joints.size(), chainMethodName(solved.chain->method), c0, c1, c2);
   out += fmt::format("bbox       [{}, {}, {}] to [{}, {}, {}]\n", lo.x(), lo.y(), lo.z(), hi.x(),
                      hi.y(), hi.z());
   return out;

@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <pthread.h>
+#include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -25,6 +26,7 @@
 #include <numbers>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -33,6 +35,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
@@ -50,6 +53,55 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxBody = 1 << 20;
 constexpr std::uint32_t kMinResolution = 2, kMaxMeshResolution = 257, kMaxExportResolution = 4097;
 constexpr std::uint32_t kDefaultMeshResolution = 16, kDefaultExportResolution = 33;
+
+/// The per-launch token's size: 192 bits, as Jupyter's (the issue asks for at least 128).
+constexpr std::size_t kTokenBytes = 24;
+/// The longest piece of a refused request's header quoted back in the error message.
+constexpr std::size_t kQuotedHeaderChars = 80;
+
+/// kTokenBytes from the kernel's cryptographic generator (getrandom(2), which waits only
+/// until the pool is first seeded at boot), as lower-case hex.
+std::string randomToken() {
+  unsigned char bytes[kTokenBytes];
+  for (std::size_t done = 0; done < sizeof bytes;) {
+    const ssize_t n = ::getrandom(bytes + done, sizeof bytes - done, 0);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw StudioError(fmt::format("cannot draw the studio's token: getrandom: {}",
+                                    std::strerror(n < 0 ? errno : EIO)));
+    done += static_cast<std::size_t>(n);
+  }
+  std::string hex;
+  for (const unsigned char b : bytes) hex += fmt::format("{:02x}", b);
+  return hex;
+}
+
+/// Whether `a` equals the secret `b`, in a time that depends only on the lengths (the
+/// token's length is no secret): a guess learns nothing from how long the answer takes.
+bool sameSecret(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  volatile unsigned char diff = 0;  // volatile: no early exit once a byte differs
+  for (std::size_t i = 0; i < a.size(); ++i) diff = diff | static_cast<unsigned char>(a[i] ^ b[i]);
+  return diff == 0;
+}
+
+std::string lowerCase(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
+}
+
+/// A header value as an error message quotes it: at most kQuotedHeaderChars.
+std::string quoted(const std::string& value) {
+  return fmt::format("\"{}{}\"", value.substr(0, kQuotedHeaderChars),
+                     value.size() > kQuotedHeaderChars ? "..." : "");
+}
+
+/// HOST as the authority of a URL: an IPv6 address in brackets.
+std::string urlHost(const std::string& host) {
+  return host.find(':') != std::string::npos ? "[" + host + "]" : host;
+}
 
 /// A request that cannot be served: the status and the message of {"error": ...}.
 struct HttpError {
@@ -69,37 +121,6 @@ std::string readFile(const fs::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-/// Writes `data` to `path` whole or not at all: a temporary file beside it, synced, then
-/// renamed over `path`. Keeps the mode of a file it replaces.
-void writeFileAtomically(const fs::path& path, std::string_view data) {
-  std::string temp =
-      (path.parent_path() / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
-  const int fd = ::mkstemp(temp.data());
-  if (fd < 0)
-    throw std::runtime_error(
-        fmt::format("{}: cannot create a temporary file: {}", path.string(), std::strerror(errno)));
-  struct stat st {};
-  const mode_t mode = ::stat(path.c_str(), &st) == 0 ? (st.st_mode & 07777) : 0644;
-  bool ok = ::fchmod(fd, mode) == 0;
-  for (std::size_t done = 0; ok && done < data.size();) {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0)
-      ok = false;
-    else
-      done += static_cast<std::size_t>(n);
-  }
-  int error = ok ? 0 : errno;
-  if (ok && ::fsync(fd) != 0) ok = false, error = errno;
-  if (::close(fd) != 0 && ok) ok = false, error = errno;
-  if (ok && ::rename(temp.c_str(), path.c_str()) != 0) ok = false, error = errno;
-  if (!ok) {
-    ::unlink(temp.c_str());
-    throw std::runtime_error(
-        fmt::format("{}: cannot write: {}", path.string(), std::strerror(error)));
-  }
 }
 
 fs::path autosavePath(const fs::path& model) { return fs::path(model.string() + ".autosave"); }
@@ -220,7 +241,7 @@ class Journal {
       busy_ = true;
       lock.unlock();
       try {
-        writeFileAtomically(job.path, serializeModel(job.model));
+        writeFileAtomically(job.path.string(), serializeModel(job.model));
       } catch (const std::exception& e) {
         std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
       }
@@ -240,7 +261,8 @@ class Journal {
 
 class StudioServer::Impl {
  public:
-  Impl(const std::string& modelPath, StudioOptions options) : options_(std::move(options)) {
+  Impl(const std::string& modelPath, StudioOptions options)
+      : options_(std::move(options)), token_(options_.requireToken ? randomToken() : "") {
     std::error_code ec;
     fs::path model = fs::absolute(modelPath, ec);
     if (!fs::exists(model, ec) || fs::is_directory(model, ec))
@@ -269,6 +291,7 @@ class StudioServer::Impl {
     }
     if (port_ < 0)
       throw StudioError(fmt::format("cannot listen on {}:{}", options_.host, options_.port));
+    allowAddresses();
     thread_ = std::thread([this] { server_.listen_after_bind(); });
     // stop() before the server runs would be lost: wait until it does.
     for (int i = 0; i < 5000 && !server_.is_running(); ++i)
@@ -284,7 +307,11 @@ class StudioServer::Impl {
 
   int port() const { return port_; }
   void flushJournal() { journal_.flush(); }
-  std::string url() const { return fmt::format("http://{}:{}/", options_.host, port_); }
+  std::string url() const {
+    return fmt::format("http://{}:{}/{}", urlHost(options_.host), port_,
+                       token_.empty() ? "" : "?token=" + token_);
+  }
+  const std::string& token() const { return token_; }
   std::string root() const { return root_.string(); }
   std::string webDir() const { return webDir_.string(); }
   std::string modelPath() const {
@@ -293,6 +320,70 @@ class StudioServer::Impl {
   }
 
  private:
+  // ------------------------------------------------------------------------------------
+  // Who may ask (apps/studio/README.md, "Security")
+
+  /// The Host values that name this server (lower case): its address and port as bound,
+  /// and for a loopback address also localhost (and the reverse). A web page of another
+  /// name that resolves to 127.0.0.1 (DNS rebinding) sends its own name and is refused.
+  void allowAddresses() {
+    const std::string host = lowerCase(options_.host);
+    std::vector<std::string> names = {urlHost(host)};
+    if (host == "127.0.0.1" || host == "::1") names.push_back("localhost");
+    if (host == "localhost") names.insert(names.end(), {"127.0.0.1", "[::1]"});
+    hosts_.clear();
+    origins_.clear();
+    for (const std::string& name : names) {
+      const std::string authority = fmt::format("{}:{}", name, port_);
+      hosts_.push_back(authority);
+      origins_.push_back("http://" + authority);
+      if (port_ == 80) {  // the default port may be left out of Host and Origin
+        hosts_.push_back(name);
+        origins_.push_back("http://" + name);
+      }
+    }
+  }
+
+  /// Why a request is refused before any handler runs, or nothing. Every request needs a
+  /// Host naming this server. Except the page's own files (GET and HEAD outside /api/),
+  /// a request needs no foreign Origin and the token; a request other than GET and HEAD
+  /// (every one that changes something) declares a JSON body, which a browser sends to
+  /// another origin only after a preflight this server never grants.
+  std::optional<HttpError> refusal(const httplib::Request& req) const {
+    // Exactly one `name` header, its value (any case) one of `allowed`.
+    const auto oneOf = [&req](const char* name, const std::vector<std::string>& allowed) {
+      return req.get_header_value_count(name) == 1 &&
+             std::find(allowed.begin(), allowed.end(), lowerCase(req.get_header_value(name))) !=
+                 allowed.end();
+    };
+    if (!oneOf("Host", hosts_))
+      return HttpError{403, fmt::format("request refused: Host {} is not this studio's address "
+                                        "{} (a web page of another name is not the studio's)",
+                                        quoted(req.get_header_value("Host")), hosts_.front())};
+    const bool safe = req.method == "GET" || req.method == "HEAD";
+    if (safe && !req.path.starts_with("/api")) return std::nullopt;
+    if (req.has_header("Origin") && !oneOf("Origin", origins_))
+      return HttpError{403, fmt::format("request refused: Origin {} is not the studio's page {} "
+                                        "(another web page may not use the studio)",
+                                        quoted(req.get_header_value("Origin")), origins_.front())};
+    if (!token_.empty() && (req.get_header_value_count(kTokenHeader) != 1 ||
+                            !sameSecret(req.get_header_value(kTokenHeader), token_)))
+      return HttpError{403, fmt::format("request refused: missing or wrong {} (open the URL "
+                                        "`pdesurf studio` printed, with its ?token=)",
+                                        kTokenHeader)};
+    if (!safe) {
+      const std::string type = req.get_header_value("Content-Type");
+      std::string_view media = std::string_view(type).substr(0, type.find(';'));
+      while (!media.empty() && (media.back() == ' ' || media.back() == '\t'))
+        media.remove_suffix(1);
+      if (lowerCase(media) != "application/json")
+        return HttpError{415, fmt::format("request refused: a {} must declare Content-Type: "
+                                          "application/json (found {})",
+                                          req.method, type.empty() ? "none" : quoted(type))};
+    }
+    return std::nullopt;
+  }
+
   // ------------------------------------------------------------------------------------
   // Paths
 
@@ -499,7 +590,7 @@ class StudioServer::Impl {
       // An untransformed spectral model is saved as its file was (save as: a copy).
       const std::string text =
           session_ ? serializeVertexFrameModel(session_->model()) : spectralText();
-      writeFileAtomically(path, text);
+      writeFileAtomically(path.string(), text);
       fileText_ = text;
       fileModel_ = session_ ? text : serializeModel(spectral_->model());
     } catch (const std::exception& e) {
@@ -535,10 +626,13 @@ class StudioServer::Impl {
 
   using Handler = std::function<void(const httplib::Request&, httplib::Response&)>;
 
-  /// Locks, and turns HttpError, ModelError and other exceptions into JSON errors.
+  /// Refuses what refusal() refuses (the body is read by now), locks, and turns HttpError,
+  /// ModelError and other exceptions into JSON errors.
   Handler guarded(Handler handler) {
     return [this, handler](const httplib::Request& req, httplib::Response& res) {
       try {
+        if (const std::optional<HttpError> refused = refusal(req))
+          fail(refused->status, refused->message);
         std::lock_guard lock(mutex_);
         handler(req, res);
       } catch (const HttpError& e) {
@@ -594,6 +688,28 @@ class StudioServer::Impl {
         [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
           sendJson(res, {{"error", "internal error"}}, 500);
         });
+    // The checks of refusal() run before the page's files and the routes. A request with a
+    // body for the API is checked by guarded() instead, once its body is read: answering
+    // before would leave the body unread, and the kernel would reset the connection (the
+    // answer lost) when it closes. Any other request with a body is an attacker's or a
+    // mistake: refused, and the connection closed.
+    server_.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+      const bool body =
+          req.has_header("Transfer-Encoding") ||
+          std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10) > 0;
+      if (body && req.path.starts_with("/api/")) return httplib::Server::HandlerResponse::Unhandled;
+      const std::optional<HttpError> refused = refusal(req);
+      if (!refused) return httplib::Server::HandlerResponse::Unhandled;
+      sendJson(res, {{"error", refused->message}}, refused->status);
+      if (body) res.set_header("Connection", "close");
+      return httplib::Server::HandlerResponse::Handled;
+    });
+    // No other page may frame the studio (clickjacking), sniff its answers as another type,
+    // or learn the page's address (and token) from a Referer.
+    server_.set_default_headers({{"X-Frame-Options", "DENY"},
+                                 {"Content-Security-Policy", "frame-ancestors 'none'"},
+                                 {"X-Content-Type-Options", "nosniff"},
+                                 {"Referrer-Policy", "no-referrer"}});
 
     mountWebDir();
     server_.Get("/", [](const httplib::Request&, httplib::Response& res) {
@@ -881,6 +997,9 @@ class StudioServer::Impl {
   }
 
   StudioOptions options_;
+  const std::string token_;           // empty: none required (--no-token)
+  std::vector<std::string> hosts_;    // the Host values naming this server, lower case
+  std::vector<std::string> origins_;  // "http://" + each of hosts_
   fs::path root_;
   fs::path webDir_;
   httplib::Server server_;
@@ -917,6 +1036,7 @@ int StudioServer::start() { return impl_->start(); }
 void StudioServer::stop() { impl_->stop(); }
 int StudioServer::port() const { return impl_->port(); }
 std::string StudioServer::url() const { return impl_->url(); }
+std::string StudioServer::token() const { return impl_->token(); }
 std::string StudioServer::root() const { return impl_->root(); }
 std::string StudioServer::modelPath() const { return impl_->modelPath(); }
 std::string StudioServer::webDir() const { return impl_->webDir(); }
@@ -941,6 +1061,10 @@ int runStudio(const std::string& modelPath, const StudioOptions& options) {
     std::fprintf(stderr, "pdesurf: %s\n", e.what());
     return 1;
   }
+  if (!options.requireToken)
+    std::fprintf(stderr,
+                 "pdesurf studio: --no-token: UNSAFE, for tests only: every program of every "
+                 "user of this machine may read and change the models\n");
   std::printf("pdesurf studio: %s (model: %s, root: %s)\n", server->url().c_str(),
               server->modelPath().c_str(), server->root().c_str());
   std::fflush(stdout);

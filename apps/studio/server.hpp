@@ -1,7 +1,8 @@
 // The studio server: a thin HTTP layer (cpp-httplib) over pdesurf::ModelSession. It serves
 // one model at a time from a root folder, applies edits, undo and redo, streams meshes,
 // saves atomically and keeps an autosave journal beside the model (`MODEL.autosave`).
-// The JSON API is listed in apps/studio/README.md.
+// The JSON API is listed in apps/studio/README.md, and what each request must carry (its
+// Host, Origin, Content-Type and the per-launch token) under "Security" there.
 #pragma once
 
 #include <memory>
@@ -20,7 +21,14 @@ struct StudioOptions {
   /// environment variable PDESURF_WEB_DIR, else the source tree's web/dist compiled in.
   /// When the folder has no index.html, `/` is a placeholder page.
   std::string webDir;
+  /// API requests must carry the per-launch token (header X-Pdesurf-Token). false
+  /// (`--no-token`) is for tests only and unsafe: every local program, of any user, may then
+  /// read and change the models (the Host, Origin and Content-Type checks stay on).
+  bool requireToken = true;
 };
+
+/// The header that carries the per-launch token.
+inline constexpr const char* kTokenHeader = "X-Pdesurf-Token";
 
 /// The folder the front-end is served from when StudioOptions::webDir is empty.
 std::string defaultWebDir();
@@ -48,8 +56,12 @@ class StudioServer {
   void stop();
 
   int port() const;
-  /// "http://HOST:PORT/".
+  /// The page's address with the token: "http://HOST:PORT/?token=TOKEN" ("[HOST]" for an
+  /// IPv6 address; without "?token=" when no token is required).
   std::string url() const;
+  /// The per-launch token: 48 hex digits (192 bits from getrandom(2)) drawn when the server
+  /// is made, or empty when options.requireToken is false.
+  std::string token() const;
   /// The canonical root folder and the current model's file (absolute).
   std::string root() const;
   std::string modelPath() const;
@@ -65,9 +77,9 @@ class StudioServer {
 };
 
 /// `pdesurf studio`: starts the server, prints
-/// "pdesurf studio: http://HOST:PORT/ (model: PATH, root: DIR)" and serves until SIGINT or
-/// SIGTERM. Returns the exit status: 0 after a signal, 1 when the model is missing or
-/// invalid or the server cannot start (the message goes to stderr).
+/// "pdesurf studio: http://HOST:PORT/?token=TOKEN (model: PATH, root: DIR)" and serves until SIGINT
+/// or SIGTERM. Returns the exit status: 0 after a signal, 1 when the model is missing or invalid or
+/// the server cannot start (the message goes to stderr).
 int runStudio(const std::string& modelPath, const StudioOptions& options);
 
 }  // namespace pdesurf::studio

@@ -5,7 +5,7 @@
 // event (a capture pointermove listener on the frame view's canvas) to the first
 // requestAnimationFrame callback after the surface mesh of that edit was applied.
 //
-//   node bench/studio/latency.mjs [--cli build/pdesurf] [--steps 200] [--stream 300] [--json out.json]
+// Usage: node bench/studio/latency.mjs [--cli build/pdesurf] [--steps 200] [--stream 300] [--json out.json]
 //   (scripts/run_bench_studio runs it with --steps 100 --stream 0; later options win)
 //
 // Two runs: "step" moves the pointer once, waits until that edit's mesh is on screen, then
@@ -14,7 +14,7 @@
 // timed to the first frame showing a mesh at or past the edit that carried it).
 import { spawn, execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
-import { appendFileSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { appendFileSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir, cpus } from 'node:os';
 import path from 'node:path';
 import { createInterface } from 'node:readline';
@@ -22,10 +22,17 @@ import { fileURLToPath } from 'node:url';
 
 const HERE = path.dirname(fileURLToPath(import.meta.url));
 const SOURCE = path.resolve(HERE, '..', '..');
+const args = process.argv.slice(2);
+if (args.includes('--help') || args.includes('-h')) {
+  // The usage is the comment block at the top of this file.
+  const head = readFileSync(fileURLToPath(import.meta.url), 'utf8').split('\n');
+  const end = head.findIndex((line) => !line.startsWith('//'));
+  console.log(head.slice(0, end).map((line) => line.replace(/^\/\/ ?/, '')).join('\n'));
+  process.exit(0);
+}
 const require = createRequire(path.join(SOURCE, 'e2e', 'package.json'));
 const { chromium } = require('@playwright/test');
 
-const args = process.argv.slice(2);
 const opt = (name, dflt) => {
   const i = args.lastIndexOf(`--${name}`);
   return i >= 0 ? args[i + 1] : dflt;
@@ -56,11 +63,13 @@ async function startStudio(model) {
     child.on('exit', (code) => reject(new Error(`studio exited with ${code}: ${stderr}`)));
     createInterface({ input: child.stdout }).once('line', (line) => {
       clearTimeout(timer);
-      const m = /(http:\/\/\S+\/)/.exec(line);
+      // The printed URL carries the per-launch token: the page takes it from there.
+      const m = /(http:\/\/\S+\/\?token=[0-9a-f]+)/.exec(line);
       m ? resolve(m[1]) : reject(new Error(`unexpected first line: ${line}`));
     });
   });
-  return { child, url };
+  const { origin, searchParams } = new URL(url);
+  return { child, url, origin, token: searchParams.get('token') };
 }
 
 // Installed before the page's scripts: timestamps of every /api/edit and /api/mesh
@@ -149,7 +158,7 @@ async function main() {
   const root = mkdtempSync(path.join(tmpdir(), 'pdesurf-bench-studio-'));
   const model = path.join(root, 'latency.json');
   execFileSync('python3', [path.join(HERE, 'make_model.py'), model, String(ROWS), String(COLS)], { stdio: 'ignore' });
-  const { child, url } = await startStudio(model);
+  const { child, url, origin, token } = await startStudio(model);
   const browser = await chromium.launch(LAUNCH);
   const results = { model: { rows: ROWS, cols: COLS, frames: ROWS * COLS }, resolution: Number(RESOLUTION) };
   try {
@@ -185,7 +194,7 @@ async function main() {
       return null;
     }, lattice);
     void vertex;
-    const state = await (await fetch(`${url}api/model`)).json();
+    const state = await (await fetch(`${origin}/api/model`, { headers: { 'X-Pdesurf-Token': token } })).json();
     const vs = state.model.vertices;
     const cx = (COLS * 0.5), cy = (ROWS * 0.5);
     let best = 0;

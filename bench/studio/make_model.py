@@ -12,9 +12,15 @@ import sys
 FRAME_LATTICE = [(0, 0), (0, 1), (0, 2), (1, 2), (2, 2), (2, 1), (2, 0), (1, 0)]
 
 
-def main():
-    out = sys.argv[1]
-    rows, cols = (int(sys.argv[2]), int(sys.argv[3])) if len(sys.argv) > 3 else (25, 40)
+def main(argv):
+    if any(a in ("-h", "--help") for a in argv):
+        print(__doc__.strip())
+        return 0
+    if len(argv) not in (1, 3) or argv[0].startswith("-"):
+        print("usage: make_model.py OUT.json [ROWS COLS]", file=sys.stderr)
+        return 2
+    out = argv[0]
+    rows, cols = (int(argv[1]), int(argv[2])) if len(argv) == 3 else (25, 40)
     vertices, index = [], {}
     for i in range(2 * rows + 1):
         for j in range(2 * cols + 1):
@@ -32,7 +38,8 @@ def main():
     with open(out, "w") as f:
         json.dump(model, f, separators=(",", ":"))
     print(f"{out}: {len(frames)} frames, {len(vertices)} vertices")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main(sys.argv[1:]))

@@ -1,5 +1,6 @@
 // A `pdesurf studio` per test: a temporary root with a copy of an example, the server on
-// a free port (its URL is the first line it prints), stopped (SIGTERM) when the test ends.
+// a free port (its URL, with the per-launch token, is the first line it prints), stopped
+// (SIGTERM) when the test ends.
 import { test as base, expect, type Page } from '@playwright/test';
 import { spawn, type ChildProcess } from 'node:child_process';
 import { copyFileSync, mkdirSync, mkdtempSync, rmSync } from 'node:fs';
@@ -12,11 +13,23 @@ export const CLI = process.env.PDESURF_CLI || path.join(SOURCE_DIR, 'build', 'pd
 export const ARTIFACTS = path.resolve(__dirname, '..', 'artifacts');
 
 export interface Studio {
+  /** The URL the studio printed: http://127.0.0.1:PORT/?token=TOKEN. */
   url: string;
+  /** http://127.0.0.1:PORT/ */
+  origin: string;
+  /** The per-launch token (the header X-Pdesurf-Token of every API request). */
+  token: string;
   root: string;
   model: string;
-  /** GET /api/model, parsed. */
+  /** GET /api/model (with the token), parsed. */
   state(): Promise<any>;
+}
+
+/** The URL of the first line `pdesurf studio` prints, its origin and its token. */
+export function printedUrl(line: string): { url: string; origin: string; token: string } {
+  const m = /(http:\/\/[^/\s]+\/)\?token=([0-9a-f]+)/.exec(line);
+  if (!m) throw new Error(`unexpected first line: ${line}`);
+  return { url: `${m[1]}?token=${m[2]}`, origin: m[1], token: m[2] };
 }
 
 async function startStudio(example: string): Promise<{ studio: Studio; child: ChildProcess }> {
@@ -26,21 +39,22 @@ async function startStudio(example: string): Promise<{ studio: Studio; child: Ch
   const child = spawn(CLI, ['studio', model, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
   let stderr = '';
   child.stderr!.on('data', (d) => (stderr += d));
-  const url = await new Promise<string>((resolve, reject) => {
+  const line = await new Promise<string>((resolve, reject) => {
     const timer = setTimeout(() => reject(new Error(`studio did not start: ${stderr}`)), 15_000);
     child.on('exit', (code) => reject(new Error(`studio exited with ${code}: ${stderr}`)));
-    createInterface({ input: child.stdout! }).once('line', (line) => {
+    createInterface({ input: child.stdout! }).once('line', (first) => {
       clearTimeout(timer);
-      const m = /(http:\/\/\S+\/)/.exec(line);
-      if (m) resolve(m[1]);
-      else reject(new Error(`unexpected first line: ${line}`));
+      resolve(first);
     });
   });
+  const { url, origin, token } = printedUrl(line);
   const studio: Studio = {
     url,
+    origin,
+    token,
     root,
     model,
-    state: async () => (await fetch(`${url}api/model`)).json(),
+    state: async () => (await fetch(`${origin}api/model`, { headers: { 'X-Pdesurf-Token': token } })).json(),
   };
   return { studio, child };
 }
@@ -96,4 +110,15 @@ export async function meshUpToDate(page: Page): Promise<void> {
 /** Waits until every edit the page queued is answered (a drag's last move included). */
 export async function settle(page: Page): Promise<void> {
   await page.evaluate(() => (window as any).__studio.idle());
+}
+
+/** Drags vertex `vertex`'s handle in the frame view by (dx, dy) pixels in `steps` moves,
+ * then waits until the page's edits are answered. */
+export async function dragVertex(page: Page, vertex: number, dx: number, dy: number, steps: number): Promise<void> {
+  const p = await page.evaluate((v) => (window as any).__studio.vertexScreen(v), vertex);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + dx, p.y + dy, { steps });
+  await page.mouse.up();
+  await settle(page);
 }

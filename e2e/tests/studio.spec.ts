@@ -1,6 +1,6 @@
 import { existsSync, statSync } from 'node:fs';
 import path from 'node:path';
-import { expect, meshUpToDate, openStudio, pageState, settle, shot, test } from './fixture';
+import { dragVertex, expect, meshUpToDate, openStudio, pageState, settle, shot, test } from './fixture';
 
 const surface = (page: import('@playwright/test').Page) =>
   page.locator('[data-testid="surface-view"] canvas');
@@ -142,12 +142,7 @@ test.describe('shared forces', () => {
 
 test('save as, open another model and reopen it: the same model', async ({ page, studio }) => {
   await openStudio(page, studio);
-  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(1));
-  await page.mouse.move(p.x, p.y);
-  await page.mouse.down();
-  await page.mouse.move(p.x + 30, p.y - 30, { steps: 5 });
-  await page.mouse.up();
-  await settle(page);
+  await dragVertex(page, 1, 30, -30, 5);
   await expect.poll(async () => (await studio.state()).undo).toBe(1);
   const edited = (await studio.state()).model;
 
@@ -193,10 +188,11 @@ test('an invalid edit shows the error and the page goes on working', async ({ pa
   await expect(page.getByTestId('status')).toContainText('8 vertices');
   await page.screenshot({ path: shot('error.png') });
 
-  // A raw request is refused the same way, and the model stays.
+  // A raw request (with the page's token) is refused the same way, and the model stays.
   const status = await page.evaluate(async () => {
     const r = await fetch('/api/edit', {
       method: 'POST',
+      headers: { 'Content-Type': 'application/json', 'X-Pdesurf-Token': sessionStorage.getItem('pdesurf-token') ?? '' },
       body: JSON.stringify({ op: 'move-vertex', vertex: 9999, position: [0, 0, 0] }),
     });
     return r.status;
@@ -205,12 +201,7 @@ test('an invalid edit shows the error and the page goes on working', async ({ pa
   expect((await studio.state()).revision).toBe(0);
 
   // Still works: a drag is accepted and clears the error.
-  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(3));
-  await page.mouse.move(p.x, p.y);
-  await page.mouse.down();
-  await page.mouse.move(p.x + 20, p.y - 20, { steps: 4 });
-  await page.mouse.up();
-  await settle(page);
+  await dragVertex(page, 3, 20, -20, 4);
   await expect.poll(async () => (await studio.state()).undo).toBe(1);
   await expect(page.getByTestId('error')).toHaveText('');
   await meshUpToDate(page);
@@ -221,12 +212,7 @@ test('an invalid edit shows the error and the page goes on working', async ({ pa
 test('Live off: edits wait for Create', async ({ page, studio }) => {
   await openStudio(page, studio);
   await page.getByTestId('live').uncheck();
-  const p = await page.evaluate(() => (window as any).__studio.vertexScreen(4));
-  await page.mouse.move(p.x, p.y);
-  await page.mouse.down();
-  await page.mouse.move(p.x, p.y - 40, { steps: 4 });
-  await page.mouse.up();
-  await settle(page);
+  await dragVertex(page, 4, 0, -40, 4);
   await expect.poll(async () => (await studio.state()).undo).toBe(1);
   await expect(page.getByTestId('status')).toContainText('out of date');
   const s = await pageState(page);

@@ -50,4 +50,12 @@ std::size_t coincidentVertices(const VertexFrameModel& model);
 /// each force), a shared force (f0 and its frame indices).
 std::size_t storageBytes(const VertexFrameModel& model);
 
+struct Mesh;
+struct CrossSectionModel;
+/// The same convention for a polygon mesh (x y z per vertex, three indices per triangle:
+/// the seed's polygon models) and a cross-section model (a and the mode count, each curve's
+/// Fourier coefficients or points, the chain parameters when given).
+std::size_t storageBytes(const Mesh& mesh);
+std::size_t storageBytes(const CrossSectionModel& model);
+
 }  // namespace pdesurf

@@ -1,7 +1,7 @@
 // Bicubic B-spline surfaces whose inner control points solve ∂⁶x/∂u³∂v³ = 0 on every span
-// (seed 004, Wu & Zhu 2021): docs/bspline-pde.md and math-notes §3. The operator is constant
-// on each bicubic span, so the PDE is one 4×4 mask equation per span pair; with control rows
-// 0, 1, n_u and columns 0, 1, n_v given, the inner points solve M X Nᵀ = Y, banded in M, N.
+// (seed 004, Wu & Zhu 2021): docs/bspline-pde.md and docs/derivations.md §3. The operator is
+// constant on each bicubic span, so the PDE is one 4×4 mask equation per span pair; with control
+// rows 0, 1, n_u and columns 0, 1, n_v given, the inner points solve M X Nᵀ = Y, banded in M, N.
 #pragma once
 
 #include <array>

@@ -41,7 +41,7 @@ struct CadExportReport {
 /// Builds one face per NurbsFace (Geom_BSplineSurface on its whole domain), sews them with
 /// BRepBuilderAPI_Sewing and writes STEP (AP214, millimetres, reals to 17 significant
 /// digits) or IGES (5.3, trimmed B-spline surfaces, millimetres). The file appears whole or
-/// not at all (writeTextFile). Throws CadError on failure.
+/// not at all (writeFileAtomically). Throws CadError on failure.
 CadExportReport writeCad(const NurbsModel& model, const std::string& path, CadFormat format,
                          const CadExportOptions& options = {});
 

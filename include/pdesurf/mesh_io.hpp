@@ -1,18 +1,17 @@
 // Reading and writing triangle meshes: OBJ, PLY (binary), STL (binary), glTF binary (.glb), OFF.
 #pragma once
 
-#include <stdexcept>
 #include <string>
-#include <string_view>
 
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/mesh.hpp"
 
 namespace pdesurf {
 
 /// A mesh file could not be read or written; what() names the file and the problem.
-class MeshIoError : public std::runtime_error {
+class MeshIoError : public FileError {
  public:
-  using std::runtime_error::runtime_error;
+  using FileError::FileError;
 };
 
 /// The mesh formats pdesurf writes and reads.
@@ -23,18 +22,16 @@ enum class MeshFormat { Obj, Ply, Stl, Glb, Off };
 MeshFormat meshFormatFromPath(const std::string& path);
 
 /// Writes `mesh` to `path` in the format its extension names. The file appears whole or
-/// not at all: the data go to a temporary file beside it, renamed over `path` at the end.
+/// not at all, with the permissions of writeFileAtomically (pdesurf/atomic_file.hpp).
 /// OBJ, PLY and glb carry the normals; STL carries per-triangle facet normals.
 /// Throws MeshIoError (and leaves no file) on failure.
 void writeMesh(const Mesh& mesh, const std::string& path);
 
-/// Writes `text` to `path` whole or not at all, as writeMesh writes a mesh: for the text
-/// outputs derived from meshes (slices as JSON). Throws MeshIoError (and leaves no file).
-void writeTextFile(const std::string& path, std::string_view text);
-
-/// Reads a mesh written by writeMesh, or an ASCII OFF file (as in CGAL's data sets).
-/// Polygons with more than three corners are fanned into triangles. STL files are
+/// Reads a mesh written by writeMesh, or an OFF file (as in CGAL's data sets). OFF and STL
+/// are read by CGAL's readers, glb by tinygltf, OBJ and PLY by pdesurf's own (they keep the
+/// normals). Polygons with more than three corners are fanned into triangles. STL files are
 /// read as triangle soups, their coincident corners merged so that the result is indexed.
+/// Every result is checked: indices in range, finite positions, at most 2^32 - 1 vertices.
 /// Throws MeshIoError naming the file and the problem.
 Mesh readMesh(const std::string& path);
 

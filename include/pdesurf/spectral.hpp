@@ -1,5 +1,5 @@
 // Periodic spectral PDE patches (seed 003, Ugail 2007; seed 002, Fu et al. 2021) as one
-// engine: docs/spectral.md and math-notes §2. A patch is
+// engine: docs/spectral.md and docs/derivations.md §2. A patch is
 //   X(u,v) = A0(u) + Σ_{n=1..M} [An(u) cos nv + Bn(u) sin nv] + R(u,v)
 // where each mode solves the ODE its operator gives it and R is the remainder that makes
 // conditions which are not finite Fourier series hold exactly.
@@ -132,7 +132,8 @@ struct SpectralOptions {
   UPlacement placement = UPlacement::Uniform;
   VParameterization parameterization = VParameterization::ChordLength;
   /// Add the remainder R(u,v) so that curves that are not M-mode Fourier series are met
-  /// exactly (math-notes §2). Off: the surface meets the M-mode truncation of each curve.
+  /// exactly (docs/derivations.md §2.3). Off: the surface meets the M-mode truncation of each
+  /// curve.
   bool remainder = true;
 };
 
@@ -257,6 +258,13 @@ SpectralPatch editSpine(const SpectralPatch& patch, const SpineEdit& edit);
 // Cross-section chains (seed 002).
 
 enum class ChainMethod {
+  /// All joints solved together (docs/spectral.md, "The global chain"): one patch between
+  /// each two consecutive curves in the chain parameter u ∈ [0, 1]; position, ∂u and ∂²u
+  /// are shared at every joint, and ∂³u, ∂⁴u are continuous at interior joints (C4), with
+  /// natural ends ∂³u = ∂⁴u = 0 or ends estimated from the data. For a > 0 this is the
+  /// minimum of ∫∫ |X_uuu|² + a |X_vvv|² du dv over surfaces through the curves. Stable for
+  /// any number of curves (a banded system, no marching).
+  Global,
   /// Method 2: a root patch through 6 curves, then patches through 3 new curves each that
   /// match position, ∂u and ∂²u of their neighbour at the shared curve: exact C2.
   ExactC2,
@@ -265,12 +273,35 @@ enum class ChainMethod {
   SharedCurves
 };
 
+/// Where the global method puts the curves along its chain parameter u ∈ [0, 1] when
+/// `CrossSectionOptions::u` is empty: the cumulative distance between consecutive curves,
+/// normalised.
+enum class ChainSpacing {
+  Centroids,     ///< distance between the curves' centroids (their a0)
+  MeanDistance,  ///< mean over v of |C_{i+1}(v) − C_i(v)| (seed 003 §3.0.1)
+  Uniform        ///< equal steps
+};
+
+/// The global method's conditions at the first and last curve.
+enum class ChainEnds {
+  /// ∂³u X = ∂⁴u X = 0: the natural boundary conditions of the energy minimum.
+  Natural,
+  /// ∂u X and ∂²u X of the polynomial in u through the first (last) min(K, 6) curves.
+  Estimated
+};
+
 struct CrossSectionOptions {
   double a = 1.0;           ///< the Fu operator's a (≠ 0; > 0 or < 0)
   std::uint32_t modes = 6;  ///< M
-  ChainMethod method = ChainMethod::ExactC2;
+  ChainMethod method = ChainMethod::Global;
   VParameterization parameterization = VParameterization::ChordLength;
   bool remainder = true;
+  // The global method only:
+  ChainSpacing spacing = ChainSpacing::Centroids;
+  /// The chain parameter of each curve (K strictly increasing values, any scale: they are
+  /// mapped to [0, 1]); empty: from `spacing`.
+  std::vector<double> u;
+  ChainEnds ends = ChainEnds::Natural;
 };
 
 /// One patch of a chain: its curves and the part of its local u ∈ [0, 1] that is shown.
@@ -279,17 +310,31 @@ struct ChainPatch {
   std::uint32_t firstCurve = 0, lastCurve = 0;  ///< curves it interpolates (inclusive)
   double tStart = 0.0, tEnd = 1.0;              ///< displayed local range
   std::uint32_t shownFirstCurve = 0, shownLastCurve = 0;
+  /// The patch's extent in the chain parameter (local t = 1 is this much of it): the number
+  /// of curve intervals for methods 1 and 2 (curve i at s = i), u_{last} − u_{first} for the
+  /// global method. A k-th chain derivative is the k-th t-derivative / length^k.
+  double length = 1.0;
 };
 
 /// Patches in chain order (curve 0 first). Consecutive patches meet at a curve: patch p's
 /// tEnd and patch p+1's tStart, both at curve patches[p].shownLastCurve.
 struct CrossSectionChain {
-  ChainMethod method = ChainMethod::ExactC2;
+  ChainMethod method = ChainMethod::Global;
   std::vector<ChainPatch> patches;
   std::uint32_t rootPatch = 0;  ///< the patch the others were built from
+  /// The chain parameter of every curve (global method: in [0, 1]; methods 1 and 2: i).
+  std::vector<double> curveU;
+  /// The operator in the chain parameter (a patch's own operator is in its local t: for the
+  /// global method a·h⁶).
+  SpectralOperator op;
 };
 
-/// Builds the chain from K ordered closed curves (K ≥ 4; method 1 needs K ≥ 6).
+/// The name of a method as model files write it: "global", "c2", "shared-curves".
+const char* chainMethodName(ChainMethod method);
+
+/// Builds the chain from K ordered closed curves (global: K ≥ 2; method 2: K ≥ 4; method 1:
+/// K ≥ 6). Throws std::invalid_argument naming the curve for bad curves, coincident
+/// spacing (two consecutive curves at the same u) or a singular system.
 CrossSectionChain buildCrossSectionChain(std::span<const CurveInput> curves,
                                          const CrossSectionOptions& options = {});
 

@@ -1,5 +1,5 @@
 // Vertex-frame models and their analytical C0 4-sided PDE patches (seed 000/001,
-// Wang et al. 2022), solved by strips: docs/vertex-frames.md and math-notes §1.
+// Wang et al. 2022), solved by strips: docs/vertex-frames.md and docs/derivations.md §1.
 #pragma once
 
 #include <array>
@@ -153,7 +153,8 @@ struct SolveOptions {
 };
 
 /// The particular solution of one force on one patch: S_p = k ⊙ s(u) s(v) inside the
-/// region, 0 outside, with k = -f0 / (π² (a1/Lu² + a2/Lv²)) per component (math-notes §1).
+/// region, 0 outside, with k = -f0 / (π² (a1/Lu² + a2/Lv²)) per component (docs/derivations.md
+/// §1.5).
 struct ForceTerm {
   Vec3 k = Vec3::Zero();
   Region region;
@@ -184,7 +185,8 @@ struct VertexFrameSurface {
   std::vector<std::string> notes;
 };
 
-/// The 8-vertex closed form of one patch (math-notes §1) given its two cubic coefficients.
+/// The 8-vertex closed form of one patch (docs/derivations.md §1.2) given its two cubic
+/// coefficients.
 std::array<Vec3, 10> patchCoefficients(const std::array<Vec3, 8>& p, const Vec3& c3,
                                        const Vec3& c6);
 

@@ -2,10 +2,13 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <variant>
 
 #include <fmt/format.h>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/mesh.hpp"
+#include "pdesurf/spectral_io.hpp"
 
 namespace pdesurf {
 
@@ -144,29 +147,68 @@ std::size_t coincidentVertices(const VertexFrameModel& model) {
   return count;
 }
 
-std::size_t storageBytes(const VertexFrameModel& model) {
+namespace {
+
+/// Counts the bytes of numbers written to six significant digits as plain text, one space
+/// between numbers and a newline after each record (the trailing space of each record
+/// becomes its newline: the byte count is the same).
+struct StorageText {
   fmt::memory_buffer out;
-  auto num = [&](double x) { fmt::format_to(std::back_inserter(out), "{:.6g} ", x); };
-  auto idx = [&](std::uint32_t i) { fmt::format_to(std::back_inserter(out), "{} ", i); };
-  auto vec = [&](const Vec3& v) {
+  void num(double x) { fmt::format_to(std::back_inserter(out), "{:.6g} ", x); }
+  void idx(std::uint64_t i) { fmt::format_to(std::back_inserter(out), "{} ", i); }
+  void vec(const Vec3& v) {
     for (int c = 0; c < 3; ++c) num(v[c]);
-  };
-  // Each record's trailing space becomes its newline: the byte count is the same.
-  for (const Vec3& v : model.vertices) vec(v);
+  }
+};
+
+}  // namespace
+
+std::size_t storageBytes(const VertexFrameModel& model) {
+  StorageText t;
+  for (const Vec3& v : model.vertices) t.vec(v);
   for (const Frame& f : model.frames) {
-    for (std::uint32_t i : f.vertices) idx(i);
-    vec(f.a1);
-    vec(f.a2);
+    for (std::uint32_t i : f.vertices) t.idx(i);
+    t.vec(f.a1);
+    t.vec(f.a2);
     for (const FrameForce& ff : f.forces) {
-      vec(ff.f0);
-      for (double r : {ff.region.u0, ff.region.u1, ff.region.v0, ff.region.v1}) num(r);
+      t.vec(ff.f0);
+      for (double r : {ff.region.u0, ff.region.u1, ff.region.v0, ff.region.v1}) t.num(r);
     }
   }
   for (const SharedForce& sf : model.forces) {
-    vec(sf.f0);
-    for (std::uint32_t k : sf.frames) idx(k);
+    t.vec(sf.f0);
+    for (std::uint32_t k : sf.frames) t.idx(k);
   }
-  return out.size();
+  return t.out.size();
+}
+
+std::size_t storageBytes(const Mesh& mesh) {
+  StorageText t;
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+    for (int c = 0; c < 3; ++c) t.num(mesh.positions[3 * v + c]);
+  for (std::uint32_t i : mesh.indices) t.idx(i);
+  return t.out.size();
+}
+
+std::size_t storageBytes(const CrossSectionModel& model) {
+  StorageText t;
+  t.num(model.options.a);  // the operator and the number of modes: one record
+  t.idx(model.options.modes);
+  for (double u : model.options.u) t.num(u);
+  for (const CurveInput& c : model.curves) {
+    if (const auto* f = std::get_if<FourierCurve>(&c)) {
+      t.vec(f->a0);
+      for (std::size_t n = 0; n < f->a.size(); ++n) {
+        t.vec(f->a[n]);
+        t.vec(f->b[n]);
+      }
+    } else {
+      const auto& s = std::get<SampledCurve>(c);
+      for (const Vec3& p : s.points) t.vec(p);
+      for (double v : s.v) t.num(v);
+    }
+  }
+  return t.out.size();
 }
 
 }  // namespace pdesurf

@@ -9,31 +9,21 @@
 #include <string>
 #include <vector>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <Eigen/Geometry>
 
+#include "analysis/triangle_tree.hpp"
+
 namespace pdesurf {
 namespace {
 
-// Plain doubles: closest points need no exact predicates.
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using Triangles = std::vector<Triangle>;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-Vec3 vertex(const Mesh& mesh, std::uint32_t v) {
-  return {mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
-}
-
-Point toPoint(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+using detail::Point;
+using detail::toPoint;
+using detail::Tree;
+using detail::Triangles;
+constexpr auto vertex = &detail::meshVertex;
 
 /// A mesh's triangles with area (corners not collinear in double arithmetic).
 struct AreaTriangles {

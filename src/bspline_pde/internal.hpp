@@ -1,5 +1,5 @@
 // Private pieces of the B-spline PDE engine shared by its sources and tests: cubic basis
-// evaluation, banded LU with partial pivoting, net validation.
+// evaluation, net validation (the banded LU is src/numerics/banded_lu.hpp).
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "numerics/banded_lu.hpp"
 #include "pdesurf/bspline_pde.hpp"
 
 namespace pdesurf::bspline {
@@ -40,34 +41,7 @@ std::vector<Vec3> fitControlPoints(const std::vector<Vec3>& values,
 std::vector<Vec3> fitFunction(const std::function<Vec3(double)>& f, KnotType knots, std::uint32_t n,
                               bool pinEnds, const std::string& where);
 
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-/// LU with partial pivoting of an m×m band matrix with kl sub- and ku super-diagonals
-/// (LAPACK's gbtrf scheme: U gets kl + ku super-diagonals, L keeps kl multipliers a column).
-class BandedLu {
- public:
-  BandedLu() = default;
-  BandedLu(int m, int kl, int ku);
-
-  int size() const { return m_; }
-  /// Entry (r, c) of the matrix, |c - r| inside the band; set before factor().
-  double& at(int r, int c) { return band_[index(r, c)]; }
-  double at(int r, int c) const { return band_[index(r, c)]; }
-
-  /// Factors in place. False when a pivot is exactly zero (a singular matrix).
-  bool factor();
-  /// Solves A X = B for every column of `b` (m rows), overwriting it: O(m (kl+ku) cols).
-  void solve(RowMatrix& b) const;
-
- private:
-  std::size_t index(int r, int c) const {
-    return static_cast<std::size_t>(r) * static_cast<std::size_t>(width_) +
-           static_cast<std::size_t>(c - r + kl_);
-  }
-  int m_ = 0, kl_ = 0, ku_ = 0, width_ = 0;
-  std::vector<double> band_;         // row r: columns r-kl .. r+kl+ku
-  std::vector<double> multipliers_;  // column k: the kl multipliers of rows k+1..k+kl
-  std::vector<int> pivots_;          // row exchanged with k at step k
-};
+using numerics::BandedLu;
+using numerics::RowMatrix;
 
 }  // namespace pdesurf::bspline

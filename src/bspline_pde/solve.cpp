@@ -1,4 +1,4 @@
-// The PDE solve (seed 004 §3, math-notes §3; docs/bspline-pde.md): one mask equation per
+// The PDE solve (seed 004 §3; docs/derivations.md §3.2, docs/bspline-pde.md): one mask equation per
 // span pair, T_u P T_vᵀ = 0, split into the unknown block X and the given points:
 // M X Nᵀ = Y = -T_u P₀ T_vᵀ (P₀: the net with its inner block zeroed), X = M⁻¹ Y N⁻ᵀ,
 // evaluated in the low-rank form below (Y has rank ≤ 6 per component).
@@ -13,52 +13,6 @@
 
 namespace pdesurf {
 namespace bspline {
-
-BandedLu::BandedLu(int m, int kl, int ku)
-    : m_(m),
-      kl_(kl),
-      ku_(ku),
-      width_(2 * kl + ku + 1),
-      band_(static_cast<std::size_t>(m) * static_cast<std::size_t>(2 * kl + ku + 1), 0.0),
-      multipliers_(static_cast<std::size_t>(m) * static_cast<std::size_t>(kl), 0.0),
-      pivots_(static_cast<std::size_t>(m), 0) {}
-
-bool BandedLu::factor() {
-  for (int k = 0; k < m_; ++k) {
-    const int last = std::min(m_ - 1, k + kl_);
-    const int lastColumn = std::min(m_ - 1, k + kl_ + ku_);
-    int pivot = k;
-    for (int r = k + 1; r <= last; ++r)
-      if (std::abs(at(r, k)) > std::abs(at(pivot, k))) pivot = r;
-    pivots_[static_cast<std::size_t>(k)] = pivot;
-    if (at(pivot, k) == 0.0) return false;
-    if (pivot != k)
-      for (int c = k; c <= lastColumn; ++c) std::swap(at(k, c), at(pivot, c));
-    const double diagonal = at(k, k);
-    for (int r = k + 1; r <= last; ++r) {
-      const double l = at(r, k) / diagonal;
-      multipliers_[static_cast<std::size_t>(k * kl_ + (r - k - 1))] = l;
-      at(r, k) = 0.0;
-      for (int c = k + 1; c <= lastColumn; ++c) at(r, c) -= l * at(k, c);
-    }
-  }
-  return true;
-}
-
-void BandedLu::solve(RowMatrix& b) const {
-  for (int k = 0; k < m_; ++k) {
-    const int pivot = pivots_[static_cast<std::size_t>(k)];
-    if (pivot != k) b.row(k).swap(b.row(pivot));
-    const int last = std::min(m_ - 1, k + kl_);
-    for (int r = k + 1; r <= last; ++r)
-      b.row(r) -= multipliers_[static_cast<std::size_t>(k * kl_ + (r - k - 1))] * b.row(k);
-  }
-  for (int k = m_ - 1; k >= 0; --k) {
-    const int lastColumn = std::min(m_ - 1, k + kl_ + ku_);
-    for (int c = k + 1; c <= lastColumn; ++c) b.row(k) -= at(k, c) * b.row(c);
-    b.row(k) /= at(k, k);
-  }
-}
 
 void validateNet(const ControlNet& net, bool innerExempt, std::string_view where) {
   const std::string prefix(where);
@@ -91,7 +45,7 @@ std::vector<Mask> masks(KnotType type, std::uint32_t n) {
   return out;
 }
 
-/// M of math-notes §3 in band form: row a (span a+3) has t[r] at column a + r - 2.
+/// M of docs/derivations.md §3.2 in band form: row a (span a+3) has t[r] at column a + r - 2.
 BandedLu factoredSystem(const std::vector<Mask>& t, std::string_view direction) {
   const int m = static_cast<int>(t.size());
   BandedLu lu(m, 2, 1);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "io/json_writer.hpp"
 #include "io/model_reader.hpp"
 #include "pdesurf/bspline_pde_io.hpp"
 #include "pdesurf/model_io.hpp"
@@ -276,72 +277,57 @@ BSplineBoundary boundaryOf(const BoundaryInput& in, const BSplinePdeOptions& kno
 
 namespace {
 
-std::string num(double x) { return Json(x).dump(); }
-std::string pointText(const Vec3& p) {
-  return fmt::format("[{}, {}, {}]", num(p.x()), num(p.y()), num(p.z()));
-}
-std::string pointsText(const std::vector<Vec3>& points, const std::string& indent) {
-  std::string out = "[";
-  for (std::size_t k = 0; k < points.size(); ++k)
-    out += fmt::format("{}\n{}  {}", k ? "," : "", indent, pointText(points[k]));
-  return out + "\n" + indent + "]";
-}
-std::string knotText(KnotType k) { return k == KnotType::Clamped ? "\"clamped\"" : "\"uniform\""; }
+using detail::jsonOf;
+using detail::ModelJson;
 
-std::string curveText(const BoundaryCurve& c, const std::string& indent) {
+const char* knotName(KnotType k) { return k == KnotType::Clamped ? "clamped" : "uniform"; }
+
+ModelJson curveJson(const BoundaryCurve& c) {
   if (const auto* s = std::get_if<BSplineCurve>(&c))
-    return fmt::format("{{\"bspline\": {}, \"knots\": {}}}", pointsText(s->points, indent),
-                       knotText(s->knots));
+    return {{"bspline", jsonOf(s->points)}, {"knots", knotName(s->knots)}};
   const auto& samples = std::get<CurveSamples>(c);
-  std::string out = "{\"points\": " + pointsText(samples.points, indent);
-  if (!samples.t.empty()) {
-    out += ", \"t\": [";
-    for (std::size_t k = 0; k < samples.t.size(); ++k) out += (k ? ", " : "") + num(samples.t[k]);
-    out += "]";
-  }
-  return out + "}";
+  ModelJson out{{"points", jsonOf(samples.points)}};
+  if (!samples.t.empty()) out["t"] = samples.t;
+  return out;
 }
 
-std::string secondText(const SecondRowInput& row, const std::string& indent) {
-  if (const auto* given = std::get_if<std::vector<Vec3>>(&row))
-    return "{\"points\": " + pointsText(*given, indent) + "}";
-  return "{\"tangent\": " + curveText(std::get<TangentCurve>(row).vectors, indent) + "}";
+ModelJson secondJson(const SecondRowInput& row) {
+  if (const auto* given = std::get_if<std::vector<Vec3>>(&row)) return {{"points", jsonOf(*given)}};
+  return {{"tangent", curveJson(std::get<TangentCurve>(row).vectors)}};
 }
 
 }  // namespace
 
 std::string serializeModel(const BSplinePdeModel& m) {
-  std::string out = "{\n  \"type\": \"bspline-pde\"";
-  if (!m.name.empty()) out += ",\n  \"name\": " + Json(m.name).dump();
-  if (!m.description.empty()) out += ",\n  \"description\": " + Json(m.description).dump();
+  ModelJson doc{{"type", "bspline-pde"}};
+  if (!m.name.empty()) doc["name"] = m.name;
+  if (!m.description.empty()) doc["description"] = m.description;
   using Form = BSplinePdeModel::Form;
   if (m.form == Form::Net || m.form == Form::Boundary)
-    out += ",\n  \"knots\": " +
-           (m.knots.uKnots == m.knots.vKnots
-                ? knotText(m.knots.uKnots)
-                : fmt::format("{{\"u\": {}, \"v\": {}}}", knotText(m.knots.uKnots),
-                              knotText(m.knots.vKnots)));
+    doc["knots"] = m.knots.uKnots == m.knots.vKnots ? ModelJson(knotName(m.knots.uKnots))
+                                                    : ModelJson{{"u", knotName(m.knots.uKnots)},
+                                                                {"v", knotName(m.knots.vKnots)}};
   switch (m.form) {
     case Form::Net: {
-      out += ",\n  \"net\": [";
+      ModelJson& net = doc["net"] = ModelJson::array();
       for (std::uint32_t i = 0; i <= m.net.nu; ++i) {
-        out += i ? ",\n    [" : "\n    [";
+        ModelJson row = ModelJson::array();
         for (std::uint32_t j = 0; j <= m.net.nv; ++j)
-          out += (j ? ", " : "") + (m.net.given(i, j) ? pointText(m.net(i, j)) : "null");
-        out += "]";
+          row.push_back(m.net.given(i, j) ? jsonOf(m.net(i, j)) : ModelJson(nullptr));
+        net.push_back(std::move(row));
       }
-      out += "\n  ]";
       break;
     }
     case Form::Boundary: {
       const BoundaryInput& b = m.boundary;
-      const std::string in = "    ";
-      out += fmt::format(
-          ",\n  \"boundary\": {{\n    \"nu\": {}, \"nv\": {},\n    \"uMin\": {},\n    \"uMax\": "
-          "{},\n    \"vMin\": {},\n    \"vMax\": {},\n    \"uMinSecond\": {},\n    "
-          "\"vMinSecond\": {}\n  }}",
-          b.nu, b.nv, curveText(b.uMin, in), curveText(b.uMax, in), curveText(b.vMin, in),
-          curveText(b.vMax, in), secondText(b.uMinSecond, in), secondText(b.vMinSecond, in));
+      doc["boundary"] = {{"nu", b.nu},
+                         {"nv", b.nv},
+                         {"uMin", curveJson(b.uMin)},
+                         {"uMax", curveJson(b.uMax)},
+                         {"vMin", curveJson(b.vMin)},
+                         {"vMax", curveJson(b.vMax)},
+                         {"uMinSecond", secondJson(b.uMinSecond)},
+                         {"vMinSecond", secondJson(b.vMinSecond)}};
       break;
     }
     case Form::Blend:
@@ -349,16 +335,14 @@ std::string serializeModel(const BSplinePdeModel& m) {
       const bool closed = m.form == Form::ClosedBlend;
       const char* names[] = {"uMin", "uMax", "vMin", "vMax"};
       const char* closedNames[] = {"start", "end"};
-      out += fmt::format(",\n  \"{}\": {{\n    \"n\": {}", closed ? "closed-blend" : "blend",
-                         m.blendN);
+      ModelJson blend{{"n", m.blendN}};
       for (std::size_t k = 0; k < m.curves.size(); ++k)
-        out += fmt::format(",\n    \"{}\": {}", closed ? closedNames[k] : names[k],
-                           curveText(m.curves[k], "    "));
-      out += "\n  }";
+        blend[closed ? closedNames[k] : names[k]] = curveJson(m.curves[k]);
+      doc[closed ? "closed-blend" : "blend"] = std::move(blend);
       break;
     }
   }
-  return out + "\n}\n";
+  return detail::writeModelJson(doc);
 }
 
 SolvedBSplinePde solveBSplineModel(const BSplinePdeModel& m, const std::string& source) {

@@ -1,4 +1,8 @@
 // Mesh files: OBJ, PLY, STL, glb and OFF, written atomically and read with validation.
+// OFF and STL are read through CGAL (mesh_read_cgal.cpp), glb through tinygltf. OBJ and PLY
+// keep their own readers: CGAL 5.5's polygon-soup readers drop the normals of both (files
+// pdesurf writes carry them, and round trips keep them), and its OBJ reader refuses files
+// without faces and skips malformed corners ("2/x") without a word.
 #include "pdesurf/mesh_io.hpp"
 
 #include <fcntl.h>
@@ -17,11 +21,9 @@
 #include <cstring>
 #include <limits>
 #include <optional>
-#include <random>
 #include <sstream>
 #include <string_view>
 #include <system_error>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -29,17 +31,16 @@
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
+#include "io/atomic_file.hpp"
+#include "io/mesh_read.hpp"
+
 namespace pdesurf {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Common helpers
 
-template <typename... Args>
-[[noreturn]] void fail(const std::string& path, fmt::format_string<Args...> format,
-                       Args&&... args) {
-  throw MeshIoError(fmt::format("{}: {}", path, fmt::format(format, std::forward<Args>(args)...)));
-}
+using detail::fail;
 
 std::string errnoText(int error) { return std::generic_category().message(error); }
 
@@ -106,102 +107,17 @@ void validateForWriting(const Mesh& mesh, const std::string& path) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Writing: a buffered writer into a temporary file that is renamed over the target at the end.
+// Writing: through the project's one atomic-file writer (src/io/atomic_file.hpp).
 
-class AtomicFileWriter {
- public:
-  explicit AtomicFileWriter(std::string path) : path_(std::move(path)) {
-    // Like mkstemp, but through open(2) with mode 0666 so that the umask applies as it would
-    // to any newly written file (mkstemp's files are private, 0600).
-    static constexpr std::string_view kAlphabet =
-        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
-    std::random_device random;
-    for (int attempt = 0;; ++attempt) {
-      std::string suffix(6, 'x');
-      for (char& c : suffix) c = kAlphabet[random() % kAlphabet.size()];
-      tempPath_ = path_ + ".tmp-" + suffix;
-      fd_ = ::open(tempPath_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-      if (fd_ >= 0) break;
-      const int error = errno;
-      if (error != EEXIST || attempt == 100)
-        fail(path_, "cannot create the temporary file {}: {}", tempPath_, errnoText(error));
-    }
-    buffer_.reserve(kChunk + kChunk / 4);
-  }
+using detail::AtomicFileWriter;
 
-  AtomicFileWriter(const AtomicFileWriter&) = delete;
-  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
-
-  ~AtomicFileWriter() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!committed_) ::unlink(tempPath_.c_str());
-  }
-
-  /// Where fmt::format_to appends text; call checkpoint() after each record.
-  fmt::appender out() { return fmt::appender(buffer_); }
-
-  /// Hands the buffer to the file once it holds a chunk.
-  void checkpoint() {
-    if (buffer_.size() >= kChunk) flush();
-  }
-
-  void bytes(const void* data, std::size_t size) {
-    const char* begin = static_cast<const char*>(data);
-    buffer_.append(begin, begin + size);
-    checkpoint();
-  }
-
-  /// Appends `value` in little-endian byte order (call checkpoint() after each record).
-  template <typename T>
-  void little(T value) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    value = swapBytesIf(value, kBigEndianHost);
-    const char* begin = reinterpret_cast<const char*>(&value);
-    buffer_.append(begin, begin + sizeof(T));
-  }
-
-  /// Writes what is left, makes it durable and renames the temporary over the target.
-  void commit() {
-    flush();
-    if (::fsync(fd_) != 0) failErrno("cannot write");
-    const int fd = std::exchange(fd_, -1);
-    if (::close(fd) != 0) failErrno("cannot write");
-    if (std::rename(tempPath_.c_str(), path_.c_str()) != 0) {
-      const int error = errno;
-      fail(path_, "cannot rename {} to it: {}", tempPath_, errnoText(error));
-    }
-    committed_ = true;
-  }
-
- private:
-  static constexpr std::size_t kChunk = std::size_t{1} << 20;
-
-  void flush() {
-    const char* data = buffer_.data();
-    std::size_t left = buffer_.size();
-    while (left > 0) {
-      const ssize_t written = ::write(fd_, data, left);
-      if (written < 0) {
-        if (errno == EINTR) continue;
-        failErrno("cannot write");
-      }
-      data += written;
-      left -= static_cast<std::size_t>(written);
-    }
-    buffer_.clear();
-  }
-
-  [[noreturn]] void failErrno(std::string_view what) const {
-    const int error = errno;
-    fail(path_, "{}: {}", what, errnoText(error));
-  }
-
-  std::string path_;
-  std::string tempPath_;
-  int fd_ = -1;
-  bool committed_ = false;
-  fmt::memory_buffer buffer_;
-};
+/// Appends `value` to `file` in little-endian byte order (call checkpoint() after each record).
+template <typename T>
+void appendLittle(AtomicFileWriter& file, T value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  value = swapBytesIf(value, kBigEndianHost);
+  file.append(&value, sizeof(T));
+}
 
 void writeObj(const Mesh& mesh, AtomicFileWriter& file) {
   const auto& p = mesh.positions;
@@ -242,14 +158,15 @@ void writePly(const Mesh& mesh, AtomicFileWriter& file, const std::string& path)
                  "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
                  mesh.triangleCount());
   for (std::size_t i = 0; i < mesh.positions.size(); i += 3) {
-    for (std::size_t k = 0; k < 3; ++k) file.little(mesh.positions[i + k]);
+    for (std::size_t k = 0; k < 3; ++k) appendLittle(file, mesh.positions[i + k]);
     if (hasNormals)
-      for (std::size_t k = 0; k < 3; ++k) file.little(mesh.normals[i + k]);
+      for (std::size_t k = 0; k < 3; ++k) appendLittle(file, mesh.normals[i + k]);
     file.checkpoint();
   }
   for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
-    file.little(std::uint8_t{3});
-    for (std::size_t k = 0; k < 3; ++k) file.little(static_cast<std::int32_t>(mesh.indices[i + k]));
+    appendLittle(file, std::uint8_t{3});
+    for (std::size_t k = 0; k < 3; ++k)
+      appendLittle(file, static_cast<std::int32_t>(mesh.indices[i + k]));
     file.checkpoint();
   }
 }
@@ -260,8 +177,8 @@ void writeStl(const Mesh& mesh, AtomicFileWriter& file, const std::string& path)
   std::array<char, 80> header{};
   constexpr std::string_view kHeader = "pdesurf binary STL";
   std::copy(kHeader.begin(), kHeader.end(), header.begin());
-  file.bytes(header.data(), header.size());
-  file.little(static_cast<std::uint32_t>(mesh.triangleCount()));
+  file.append(header.data(), header.size());
+  appendLittle(file, static_cast<std::uint32_t>(mesh.triangleCount()));
   const float* p = mesh.positions.data();
   for (std::size_t i = 0; i < mesh.indices.size(); i += 3) {
     const float* a = p + 3 * std::size_t{mesh.indices[i]};
@@ -274,10 +191,10 @@ void writeStl(const Mesh& mesh, AtomicFileWriter& file, const std::string& path)
     const double length =
         std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
     for (double& component : normal) component = length > 0 ? component / length : 0.0;
-    for (double component : normal) file.little(static_cast<float>(component));
+    for (double component : normal) appendLittle(file, static_cast<float>(component));
     for (const float* corner : {a, b, c})
-      for (int k = 0; k < 3; ++k) file.little(corner[k]);
-    file.little(std::uint16_t{0});
+      for (int k = 0; k < 3; ++k) appendLittle(file, corner[k]);
+    appendLittle(file, std::uint16_t{0});
     file.checkpoint();
   }
 }
@@ -386,7 +303,7 @@ void writeGlb(const Mesh& mesh, AtomicFileWriter& file, const std::string& path)
       !stream)
     fail(path, "tinygltf could not serialize the mesh");
   const std::string bytes = std::move(stream).str();
-  file.bytes(bytes.data(), bytes.size());
+  file.append(bytes.data(), bytes.size());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -860,106 +777,6 @@ Mesh readPly(std::string_view data, const std::string& path) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// STL
-
-/// Indexes a triangle soup (9 floats per triangle), merging corners at equal positions.
-Mesh indexSoup(const std::vector<float>& corners) {
-  using Key = std::array<std::uint32_t, 3>;
-  struct KeyHash {
-    std::size_t operator()(const Key& key) const {
-      std::uint64_t hash = key[0];
-      hash = hash * 0x9E3779B97F4A7C15ull ^ key[1];
-      hash = hash * 0x9E3779B97F4A7C15ull ^ key[2];
-      return static_cast<std::size_t>(hash ^ (hash >> 29));
-    }
-  };
-  std::unordered_map<Key, std::uint32_t, KeyHash> vertexAt;
-  vertexAt.reserve(corners.size() / 9);
-  Mesh mesh;
-  mesh.indices.reserve(corners.size() / 3);
-  for (std::size_t i = 0; i < corners.size(); i += 3) {
-    Key key;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const float value = corners[i + k] == 0.0f ? 0.0f : corners[i + k];  // -0 is 0
-      key[k] = std::bit_cast<std::uint32_t>(value);
-    }
-    const auto [it, inserted] =
-        vertexAt.try_emplace(key, static_cast<std::uint32_t>(mesh.vertexCount()));
-    if (inserted) mesh.positions.insert(mesh.positions.end(), &corners[i], &corners[i] + 3);
-    mesh.indices.push_back(it->second);
-  }
-  return mesh;
-}
-
-Mesh readAsciiStl(std::string_view text, const std::string& path) {
-  Tokenizer tokens(text, path, '\0');
-  std::vector<float> corners, polygon;
-  std::size_t facet = 0;
-  for (std::string_view keyword = tokens.next(); !keyword.empty(); keyword = tokens.next()) {
-    if (equalsIgnoringCase(keyword, "solid") || equalsIgnoringCase(keyword, "endsolid")) {
-      tokens.nextLine();  // the solid's name
-      continue;
-    }
-    const Where where{"facet", facet};
-    if (!equalsIgnoringCase(keyword, "facet"))
-      tokens.fail("expected 'facet' in {}, found '{}'", describe(where), keyword);
-    tokens.expect("normal", where);
-    for (int k = 0; k < 3; ++k) tokens.nextNumber<float>(where);
-    tokens.expect("outer", where);
-    tokens.expect("loop", where);
-    polygon.clear();
-    std::string_view token = tokens.next();
-    for (; equalsIgnoringCase(token, "vertex"); token = tokens.next())
-      for (int k = 0; k < 3; ++k) polygon.push_back(tokens.nextNumber<float>(where));
-    if (token.empty()) tokens.failAtEnd(where);
-    if (!equalsIgnoringCase(token, "endloop"))
-      tokens.fail("expected 'vertex' or 'endloop' in {}, found '{}'", describe(where), token);
-    if (polygon.size() < 9) tokens.fail("{} has {} corners", describe(where), polygon.size() / 3);
-    tokens.expect("endfacet", where);
-    for (std::size_t i = 3; i + 3 < polygon.size(); i += 3) {
-      corners.insert(corners.end(), polygon.begin(), polygon.begin() + 3);
-      corners.insert(corners.end(), polygon.begin() + static_cast<std::ptrdiff_t>(i),
-                     polygon.begin() + static_cast<std::ptrdiff_t>(i) + 6);
-    }
-    ++facet;
-  }
-  return indexSoup(corners);
-}
-
-Mesh readStl(std::string_view data, const std::string& path) {
-  constexpr std::size_t kHeader = 84, kTriangle = 50;
-  const std::size_t first = std::min(data.find_first_not_of(" \t\r\n"), data.size());
-  const bool startsWithSolid = equalsIgnoringCase(data.substr(first, 5), "solid");
-  if (data.size() >= kHeader) {
-    ByteReader header(data, 80, path, false);
-    const std::uint64_t count = header.get<std::uint32_t>(Where{"the header"});
-    if (kHeader + kTriangle * count == data.size()) {
-      std::vector<float> corners;
-      corners.reserve(9 * count);
-      ByteReader triangles(data, kHeader, path, false);
-      for (std::size_t t = 0; t < count; ++t) {
-        const Where where{"triangle", t};
-        triangles.skip(12);  // the facet normal
-        for (int k = 0; k < 9; ++k) corners.push_back(triangles.get<float>(where));
-        triangles.skip(2);  // the attribute byte count
-      }
-      return indexSoup(corners);
-    }
-    if (!startsWithSolid)
-      fail(path,
-           "not a valid binary STL: {} triangles take {} bytes but the file has {} (and it is not "
-           "ASCII STL, which starts with 'solid')",
-           count, kHeader + kTriangle * count, data.size());
-  }
-  if (!startsWithSolid)
-    fail(path,
-         "not an STL file: {} bytes is too short for binary STL and it does not start "
-         "with 'solid'",
-         data.size());
-  return readAsciiStl(data, path);
-}
-
-// ---------------------------------------------------------------------------------------------
 // glb
 
 /// Where accessor `index`'s elements start in their buffer, and their stride.
@@ -1099,60 +916,27 @@ Mesh readGlb(const std::string& data, const std::string& path) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// OFF
+// After reading, whatever the format
 
-Mesh readOff(std::string_view text, const std::string& path) {
-  Tokenizer tokens(text, path, '#');
-  const std::string_view header = tokens.next();
-  // [ST][C][N][4][n]OFF; the prefixes add per-vertex data after the position.
-  if (header.size() < 3 || header.substr(header.size() - 3) != "OFF")
-    fail(path, "not an OFF file (it does not start with 'OFF')");
-  const std::string_view prefix = header.substr(0, header.size() - 3);
-  if (prefix.find_first_of("4n") != std::string_view::npos)
-    tokens.fail("'{}' files are not supported", header);
-  const bool hasNormals = prefix.find('N') != std::string_view::npos;
-  const Where inHeader{"the header"};
-  const std::string_view first = tokens.next();
-  if (first == "BINARY") tokens.fail("binary OFF files are not supported");
-  const auto vertexCount = tokens.number<std::int64_t>(first, inHeader);
-  std::string_view token = tokens.onLine();
-  const auto faceCount =
-      tokens.number<std::int64_t>(token.empty() ? tokens.next() : token, inHeader);
-  if (vertexCount < 0 || faceCount < 0) tokens.fail("negative counts in the header");
-  if (static_cast<std::uint64_t>(vertexCount) > std::numeric_limits<std::uint32_t>::max())
-    tokens.fail("{} vertices do not fit 32-bit indices", vertexCount);
-  tokens.nextLine();  // the edge count and anything else
-
-  Mesh mesh;
-  const std::size_t vertices = static_cast<std::size_t>(vertexCount);
-  const std::size_t faces = static_cast<std::size_t>(faceCount);
-  mesh.positions.reserve(3 * std::min(vertices, text.size()));
-  if (hasNormals) mesh.normals.reserve(3 * std::min(vertices, text.size()));
-  for (std::size_t v = 0; v < vertices; ++v) {
-    const Where where{"vertex", v};
-    for (int k = 0; k < 3; ++k) mesh.positions.push_back(tokens.nextNumber<float>(where));
-    if (hasNormals)
-      for (int k = 0; k < 3; ++k) mesh.normals.push_back(tokens.nextNumber<float>(where));
-    tokens.nextLine();  // colours, texture coordinates
-  }
-  mesh.indices.reserve(3 * std::min(faces, text.size()));
-  std::vector<std::uint32_t> corners;
-  for (std::size_t f = 0; f < faces; ++f) {
-    const Where where{"face", f};
-    const auto cornerCount = tokens.nextNumber<std::int64_t>(where);
-    if (cornerCount < 3) tokens.fail("face {} has {} corners", f, cornerCount);
-    corners.clear();
-    for (std::int64_t k = 0; k < cornerCount; ++k) {
-      const auto index = tokens.nextNumber<std::int64_t>(where);
-      if (index < 0 || index >= vertexCount)
-        tokens.fail("face {} refers to vertex {} but the file has {} vertices", f, index,
-                    vertexCount);
-      corners.push_back(static_cast<std::uint32_t>(index));
-    }
-    appendFan(corners, mesh.indices);
-    tokens.nextLine();  // face colours
-  }
-  return mesh;
+/// Throws unless every index names a vertex, every position is finite and the vertices fit
+/// 32-bit indices: what every reader's result must hold, checked once for all of them.
+/// Normals that are not all finite are dropped (a mesh is usable without them).
+void checkReadMesh(Mesh& mesh, const std::string& path) {
+  const std::size_t vertexCount = mesh.vertexCount();
+  if (vertexCount > std::numeric_limits<std::uint32_t>::max())
+    fail(path, "{} vertices do not fit 32-bit indices", vertexCount);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    if (!std::isfinite(mesh.positions[i]))
+      fail(path,
+           "vertex {} has a non-finite coordinate ({}): coordinates must fit single precision",
+           i / 3, mesh.positions[i]);
+  for (std::size_t i = 0; i < mesh.indices.size(); ++i)
+    if (mesh.indices[i] >= vertexCount)
+      fail(path, "triangle {} refers to vertex {} but the file has {} vertices", i / 3,
+           mesh.indices[i], vertexCount);
+  if (!std::all_of(mesh.normals.begin(), mesh.normals.end(),
+                   [](float n) { return std::isfinite(n); }))
+    mesh.normals.clear();
 }
 
 }  // namespace
@@ -1178,49 +962,56 @@ MeshFormat meshFormatFromPath(const std::string& path) {
 void writeMesh(const Mesh& mesh, const std::string& path) {
   const MeshFormat format = meshFormatFromPath(path);
   validateForWriting(mesh, path);
-  AtomicFileWriter file(path);
-  switch (format) {
-    case MeshFormat::Obj:
-      writeObj(mesh, file);
-      break;
-    case MeshFormat::Ply:
-      writePly(mesh, file, path);
-      break;
-    case MeshFormat::Stl:
-      writeStl(mesh, file, path);
-      break;
-    case MeshFormat::Glb:
-      writeGlb(mesh, file, path);
-      break;
-    case MeshFormat::Off:
-      writeOff(mesh, file);
-      break;
+  try {
+    AtomicFileWriter file(path);
+    switch (format) {
+      case MeshFormat::Obj:
+        writeObj(mesh, file);
+        break;
+      case MeshFormat::Ply:
+        writePly(mesh, file, path);
+        break;
+      case MeshFormat::Stl:
+        writeStl(mesh, file, path);
+        break;
+      case MeshFormat::Glb:
+        writeGlb(mesh, file, path);
+        break;
+      case MeshFormat::Off:
+        writeOff(mesh, file);
+        break;
+    }
+    file.commit();
+  } catch (const MeshIoError&) {
+    throw;
+  } catch (const FileError& e) {  // the write itself: a MeshIoError like every other failure
+    throw MeshIoError(e.what());
   }
-  file.commit();
-}
-
-void writeTextFile(const std::string& path, std::string_view text) {
-  AtomicFileWriter file(path);
-  file.bytes(text.data(), text.size());
-  file.commit();
 }
 
 Mesh readMesh(const std::string& path) {
   const MeshFormat format = meshFormatFromPath(path);
   const std::string data = readFile(path);
+  Mesh mesh;
   switch (format) {
     case MeshFormat::Obj:
-      return readObj(data, path);
+      mesh = readObj(data, path);
+      break;
     case MeshFormat::Ply:
-      return readPly(data, path);
+      mesh = readPly(data, path);
+      break;
     case MeshFormat::Stl:
-      return readStl(data, path);
+      mesh = detail::readStl(data, path);
+      break;
     case MeshFormat::Glb:
-      return readGlb(data, path);
+      mesh = readGlb(data, path);
+      break;
     case MeshFormat::Off:
-      return readOff(data, path);
+      mesh = detail::readOff(data, path);
+      break;
   }
-  fail(path, "unknown mesh format");
+  checkReadMesh(mesh, path);
+  return mesh;
 }
 
 }  // namespace pdesurf

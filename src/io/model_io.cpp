@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/json_reader.hpp"
+#include "io/json_writer.hpp"
 #include "pdesurf/model_io.hpp"
 
 namespace pdesurf {
@@ -102,41 +103,26 @@ VertexFrameModel loadVertexFrameModel(const std::string& path) {
 }
 
 std::string serializeVertexFrameModel(const VertexFrameModel& model) {
-  auto vec = [](const Vec3& v) { return fmt::format("[{}, {}, {}]", v.x(), v.y(), v.z()); };
-  std::string out = "{\n  \"type\": \"vertex-frames\",\n";
-  if (!model.name.empty()) out += fmt::format("  \"name\": {},\n", Json(model.name).dump());
-  out += "  \"vertices\": [\n";
-  for (std::size_t i = 0; i < model.vertices.size(); ++i)
-    out +=
-        fmt::format("    {}{}\n", vec(model.vertices[i]), i + 1 < model.vertices.size() ? "," : "");
-  out += "  ],\n  \"frames\": [\n";
-  for (std::size_t k = 0; k < model.frames.size(); ++k) {
-    const Frame& f = model.frames[k];
-    out += fmt::format("    {{\"vertices\": [{}]", fmt::join(f.vertices, ", "));
-    if (f.a1 != Vec3::Ones()) out += fmt::format(", \"a1\": {}", vec(f.a1));
-    if (f.a2 != Vec3::Ones()) out += fmt::format(", \"a2\": {}", vec(f.a2));
-    if (!f.forces.empty()) {
-      out += ", \"forces\": [";
-      for (std::size_t i = 0; i < f.forces.size(); ++i) {
-        const Region& r = f.forces[i].region;
-        out += fmt::format("{}{{\"f0\": {}, \"region\": [{}, {}, {}, {}]}}", i ? ", " : "",
-                           vec(f.forces[i].f0), r.u0, r.u1, r.v0, r.v1);
-      }
-      out += "]";
+  using detail::jsonOf;
+  detail::ModelJson doc;
+  doc["type"] = "vertex-frames";
+  if (!model.name.empty()) doc["name"] = model.name;
+  doc["vertices"] = jsonOf(model.vertices);
+  doc["frames"] = detail::ModelJson::array();
+  for (const Frame& f : model.frames) {
+    detail::ModelJson frame;
+    frame["vertices"] = f.vertices;
+    if (f.a1 != Vec3::Ones()) frame["a1"] = jsonOf(f.a1);
+    if (f.a2 != Vec3::Ones()) frame["a2"] = jsonOf(f.a2);
+    for (const FrameForce& force : f.forces) {
+      const Region& r = force.region;
+      frame["forces"].push_back({{"f0", jsonOf(force.f0)}, {"region", {r.u0, r.u1, r.v0, r.v1}}});
     }
-    out += fmt::format("}}{}\n", k + 1 < model.frames.size() ? "," : "");
+    doc["frames"].push_back(std::move(frame));
   }
-  out += "  ]";
-  if (!model.forces.empty()) {
-    out += ",\n  \"forces\": [\n";
-    for (std::size_t i = 0; i < model.forces.size(); ++i)
-      out += fmt::format("    {{\"f0\": {}, \"frames\": [{}]}}{}\n", vec(model.forces[i].f0),
-                         fmt::join(model.forces[i].frames, ", "),
-                         i + 1 < model.forces.size() ? "," : "");
-    out += "  ]";
-  }
-  out += "\n}\n";
-  return out;
+  for (const SharedForce& force : model.forces)
+    doc["forces"].push_back({{"f0", jsonOf(force.f0)}, {"frames", force.frames}});
+  return detail::writeModelJson(doc);
 }
 
 }  // namespace pdesurf

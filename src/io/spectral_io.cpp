@@ -213,7 +213,7 @@ SpectralModel parseSpectral(const Json& doc, const SpectralReader& rd) {
 CrossSectionModel parseCrossSections(const Json& doc, const SpectralReader& rd) {
   rd.onlyMembers(doc, "$",
                  {"type", "name", "description", "a", "modes", "method", "parameterization",
-                  "remainder", "curves"});
+                  "remainder", "spacing", "u", "ends", "curves"});
   CrossSectionModel m;
   rd.header(doc, m.name, m.description);
   rd.common(doc, m.options.modes, m.options.parameterization, m.options.remainder);
@@ -223,17 +223,43 @@ CrossSectionModel parseCrossSections(const Json& doc, const SpectralReader& rd) 
       rd.fail("$.a", "a = 0 leaves ∂⁶u X = 0, which does not couple v: use a > 0 or a < 0");
   }
   if (auto it = doc.find("method"); it != doc.end())
-    m.options.method = rd.choice<ChainMethod>(
-        *it, "$.method",
-        {{"c2", ChainMethod::ExactC2}, {"shared-curves", ChainMethod::SharedCurves}});
-  const std::size_t minCurves = m.options.method == ChainMethod::ExactC2 ? 4 : 6;
+    m.options.method = rd.choice<ChainMethod>(*it, "$.method",
+                                              {{"global", ChainMethod::Global},
+                                               {"c2", ChainMethod::ExactC2},
+                                               {"shared-curves", ChainMethod::SharedCurves}});
+  const bool global = m.options.method == ChainMethod::Global;
+  for (const char* key : {"spacing", "u", "ends"})
+    if (!global && doc.contains(key))
+      rd.fail(fmt::format("$.{}", key),
+              fmt::format("\"{}\" belongs to the \"global\" method, not \"{}\"", key,
+                          chainMethodName(m.options.method)));
+  if (auto it = doc.find("spacing"); it != doc.end())
+    m.options.spacing = rd.choice<ChainSpacing>(*it, "$.spacing",
+                                                {{"centroids", ChainSpacing::Centroids},
+                                                 {"mean-distance", ChainSpacing::MeanDistance},
+                                                 {"uniform", ChainSpacing::Uniform}});
+  if (auto it = doc.find("ends"); it != doc.end())
+    m.options.ends = rd.choice<ChainEnds>(
+        *it, "$.ends", {{"natural", ChainEnds::Natural}, {"estimated", ChainEnds::Estimated}});
+  const std::size_t minCurves = global ? 2 : m.options.method == ChainMethod::ExactC2 ? 4 : 6;
   const Json& list = rd.member(doc, "$", "curves");
   rd.expectArray(list, "$.curves", 0);
   if (list.size() < minCurves)
-    rd.fail("$.curves",
-            fmt::format("the {} method needs at least {} curves, found {}",
-                        m.options.method == ChainMethod::ExactC2 ? "\"c2\"" : "\"shared-curves\"",
-                        minCurves, list.size()));
+    rd.fail("$.curves", fmt::format("the \"{}\" method needs at least {} curves, found {}",
+                                    chainMethodName(m.options.method), minCurves, list.size()));
+  if (auto it = doc.find("u"); it != doc.end()) {
+    rd.expectArray(*it, "$.u", 0);
+    if (it->size() != list.size())
+      rd.fail("$.u",
+              fmt::format("expected one u per curve ({}), found {}", list.size(), it->size()));
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const std::string ip = fmt::format("$.u[{}]", i);
+      const double x = rd.number((*it)[i], ip);
+      if (i > 0 && !(x > m.options.u.back()))
+        rd.fail(ip, fmt::format("u values must increase: {} follows {}", x, m.options.u.back()));
+      m.options.u.push_back(x);
+    }
+  }
   for (std::size_t i = 0; i < list.size(); ++i)
     m.curves.push_back(rd.curve(list[i], fmt::format("$.curves[{}]", i), m.options.modes));
   return m;

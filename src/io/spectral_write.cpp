@@ -4,9 +4,7 @@
 #include <string>
 #include <type_traits>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
+#include "io/json_writer.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/spectral_io.hpp"
 
@@ -14,35 +12,20 @@ namespace pdesurf {
 
 namespace {
 
-std::string vec(const Vec3& v) { return fmt::format("[{}, {}, {}]", v.x(), v.y(), v.z()); }
+using detail::jsonOf;
+using detail::ModelJson;
 
-std::string quoted(const std::string& s) { return nlohmann::json(s).dump(); }
-
-/// Points, one per line at `indent`, as a JSON array.
-std::string pointList(const std::vector<Vec3>& points, const std::string& indent) {
-  std::string out = "[\n";
-  for (std::size_t i = 0; i < points.size(); ++i)
-    out += fmt::format("{}  {}{}\n", indent, vec(points[i]), i + 1 < points.size() ? "," : "");
-  return out + indent + "]";
-}
-
-/// A curve object at `indent` (its first line is not indented).
-std::string curve(const CurveInput& c, const std::string& indent) {
+ModelJson curve(const CurveInput& c) {
   if (const auto* s = std::get_if<SampledCurve>(&c)) {
-    std::string out =
-        fmt::format("{{\n{}  \"points\": {}", indent, pointList(s->points, indent + "  "));
-    if (!s->v.empty()) out += fmt::format(",\n{}  \"v\": [{}]", indent, fmt::join(s->v, ", "));
-    return out + fmt::format("\n{}}}", indent);
+    ModelJson out{{"points", jsonOf(s->points)}};
+    if (!s->v.empty()) out["v"] = s->v;
+    return out;
   }
   const FourierCurve& f = std::get<FourierCurve>(c);
-  std::string out = fmt::format("{{\"fourier\": {{\"a0\": {}", vec(f.a0));
-  for (const auto* list : {&f.a, &f.b}) {
-    if (list->empty()) continue;
-    std::vector<std::string> items;
-    for (const Vec3& v : *list) items.push_back(vec(v));
-    out += fmt::format(", \"{}\": [{}]", list == &f.a ? "a" : "b", fmt::join(items, ", "));
-  }
-  return out + "}}";
+  ModelJson fourier{{"a0", jsonOf(f.a0)}};
+  if (!f.a.empty()) fourier["a"] = jsonOf(f.a);
+  if (!f.b.empty()) fourier["b"] = jsonOf(f.b);
+  return {{"fourier", std::move(fourier)}};
 }
 
 const char* parameterizationName(VParameterization p) {
@@ -50,64 +33,59 @@ const char* parameterizationName(VParameterization p) {
 }
 
 /// "type", "name", "description": the head of either document.
-std::string head(const char* type, const std::string& name, const std::string& description) {
-  std::string out = fmt::format("{{\n  \"type\": \"{}\",\n", type);
-  if (!name.empty()) out += fmt::format("  \"name\": {},\n", quoted(name));
-  if (!description.empty()) out += fmt::format("  \"description\": {},\n", quoted(description));
-  return out;
+ModelJson head(const char* type, const std::string& name, const std::string& description) {
+  ModelJson doc{{"type", type}};
+  if (!name.empty()) doc["name"] = name;
+  if (!description.empty()) doc["description"] = description;
+  return doc;
 }
 
 }  // namespace
 
 std::string serializeModel(const SpectralModel& m) {
-  std::string out = head("spectral", m.name, m.description);
-  if (m.op.kind == OperatorKind::Ugail)
-    out +=
-        fmt::format("  \"operator\": \"ugail\",\n  \"N\": {},\n  \"a\": {},\n", m.op.power, m.op.a);
-  else
-    out += fmt::format("  \"operator\": \"fu\",\n  \"a\": {},\n", m.op.a);
-  const char* placement = m.options.placement == UPlacement::Given     ? "given"
-                          : m.options.placement == UPlacement::Uniform ? "uniform"
-                                                                       : "chord-length";
-  out += fmt::format(
-      "  \"modes\": {},\n  \"placement\": \"{}\",\n  \"parameterization\": \"{}\",\n"
-      "  \"remainder\": {},\n  \"conditions\": [\n",
-      m.options.modes, placement, parameterizationName(m.options.parameterization),
-      m.options.remainder);
-  for (std::size_t i = 0; i < m.conditions.size(); ++i) {
-    const SpectralCondition& c = m.conditions[i];
-    out += "    {";
-    if (c.u) out += fmt::format("\"u\": {}, ", *c.u);
-    out += fmt::format("\"derivative\": {}, \"curve\": {}}}{}\n", c.derivative,
-                       curve(c.curve, "    "), i + 1 < m.conditions.size() ? "," : "");
+  ModelJson doc = head("spectral", m.name, m.description);
+  if (m.op.kind == OperatorKind::Ugail) {
+    doc["operator"] = "ugail";
+    doc["N"] = m.op.power;
+  } else {
+    doc["operator"] = "fu";
   }
-  out += "  ]";
-  if (!m.spineEdits.empty()) {
-    out += ",\n  \"spine\": [\n";
-    for (std::size_t e = 0; e < m.spineEdits.size(); ++e) {
-      std::vector<std::string> moved;
-      for (const Vec3& p : m.spineEdits[e].moved) moved.push_back(vec(p));
-      out += fmt::format("    {{\"u\": [{}], \"moved\": [{}]}}{}\n",
-                         fmt::join(m.spineEdits[e].u, ", "), fmt::join(moved, ", "),
-                         e + 1 < m.spineEdits.size() ? "," : "");
-    }
-    out += "  ]";
+  doc["a"] = m.op.a;
+  doc["modes"] = m.options.modes;
+  doc["placement"] = m.options.placement == UPlacement::Given     ? "given"
+                     : m.options.placement == UPlacement::Uniform ? "uniform"
+                                                                  : "chord-length";
+  doc["parameterization"] = parameterizationName(m.options.parameterization);
+  doc["remainder"] = m.options.remainder;
+  doc["conditions"] = ModelJson::array();
+  for (const SpectralCondition& c : m.conditions) {
+    ModelJson condition;
+    if (c.u) condition["u"] = *c.u;
+    condition["derivative"] = c.derivative;
+    condition["curve"] = curve(c.curve);
+    doc["conditions"].push_back(std::move(condition));
   }
-  return out + "\n}\n";
+  for (const SpineEdit& e : m.spineEdits)
+    doc["spine"].push_back({{"u", e.u}, {"moved", jsonOf(e.moved)}});
+  return detail::writeModelJson(doc);
 }
 
 std::string serializeModel(const CrossSectionModel& m) {
-  std::string out = head("cross-sections", m.name, m.description);
-  out += fmt::format(
-      "  \"a\": {},\n  \"modes\": {},\n  \"method\": \"{}\",\n  \"parameterization\": \"{}\",\n"
-      "  \"remainder\": {},\n  \"curves\": [\n",
-      m.options.a, m.options.modes,
-      m.options.method == ChainMethod::ExactC2 ? "c2" : "shared-curves",
-      parameterizationName(m.options.parameterization), m.options.remainder);
-  for (std::size_t i = 0; i < m.curves.size(); ++i)
-    out +=
-        fmt::format("    {}{}\n", curve(m.curves[i], "    "), i + 1 < m.curves.size() ? "," : "");
-  return out + "  ]\n}\n";
+  ModelJson doc = head("cross-sections", m.name, m.description);
+  doc["a"] = m.options.a;
+  doc["modes"] = m.options.modes;
+  doc["method"] = chainMethodName(m.options.method);
+  doc["parameterization"] = parameterizationName(m.options.parameterization);
+  doc["remainder"] = m.options.remainder;
+  if (m.options.method == ChainMethod::Global) {
+    constexpr const char* kSpacing[] = {"centroids", "mean-distance", "uniform"};
+    doc["spacing"] = kSpacing[static_cast<int>(m.options.spacing)];
+    doc["ends"] = m.options.ends == ChainEnds::Natural ? "natural" : "estimated";
+    if (!m.options.u.empty()) doc["u"] = m.options.u;
+  }
+  doc["curves"] = ModelJson::array();
+  for (const CurveInput& c : m.curves) doc["curves"].push_back(curve(c));
+  return detail::writeModelJson(doc);
 }
 
 std::string serializeModel(const AnyModel& model) {

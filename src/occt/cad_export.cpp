@@ -36,7 +36,7 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 
-#include "pdesurf/mesh_io.hpp"  // writeTextFile: whole or not at all
+#include "pdesurf/atomic_file.hpp"
 #include "pdesurf/occt_convert.hpp"
 
 namespace pdesurf {
@@ -174,10 +174,10 @@ CadExportReport writeCad(const NurbsModel& model, const std::string& path, CadFo
       if (BRep_Tool::Degenerated(TopoDS::Edge(edges(e)))) ++report.degeneratedEdges;
     const std::string text =
         format == CadFormat::Step ? stepText(shape, path) : igesText(shape, path);
-    writeTextFile(path, text);
+    writeFileAtomically(path, text);
   } catch (const Standard_Failure& e) {
     throw CadError(fmt::format("{}: Open CASCADE failed: {}", path, e.GetMessageString()));
-  } catch (const MeshIoError& e) {  // the write itself
+  } catch (const FileError& e) {  // the write itself
     throw CadError(e.what());
   }
   return report;

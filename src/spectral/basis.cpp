@@ -25,6 +25,13 @@ std::vector<Root> modeRoots(const SpectralOperator& op, std::uint32_t n, double 
   // Fu: r⁶ = a' n⁶ with a' = a·length⁶ (∂u = ∂t / length). |r| = κ, arguments jπ/3 for
   // a' > 0 and π/6 + jπ/3 for a' < 0; one root per conjugate pair is kept.
   const double kappa = nd * std::pow(std::abs(op.a), 1.0 / 6.0) * length;
+  if (kappa < kSeriesRadius) {
+    Root series;
+    series.multiplicity = 6;
+    series.series = true;
+    series.seriesC = op.a * std::pow(length * nd, 6.0);  // c = a' n⁶, |c| = κ⁶ < 1
+    return {series};
+  }
   const int shift = op.a > 0 ? 0 : 1;  // arguments in units of π/6
   std::vector<Root> roots;
   for (int j = 0; j < 6; ++j) {
@@ -131,9 +138,16 @@ Recurrence weightedRecurrence(double sigma, std::uint32_t count) {
 
 ModeBasis::ModeBasis(std::vector<Root> roots) : roots_(std::move(roots)) {
   for (const Root& r : roots_) {
+    if (r.series) {  // no recurrence: the series functions are near monomials already
+      nearPolynomial_ = roots_.size() == 1 && r.multiplicity <= 6;
+      size_ += r.multiplicity;
+      recurrences_.emplace_back();
+      continue;
+    }
     size_ += (r.mu.imag() != 0.0 ? 2 : 1) * r.multiplicity;
     recurrences_.push_back(weightedRecurrence(std::abs(r.mu.real()), r.multiplicity));
     const double m = r.multiplicity, mag = std::abs(r.mu);
+    if (roots_.size() == 1 && mag == 0.0 && m <= 6) nearPolynomial_ = true;
     if (roots_.size() > 1 && m >= 2 && mag < 3 * m && (m >= 8 || mag < m)) extended_ = true;
   }
 }
@@ -157,6 +171,42 @@ const std::vector<T>& binomials() {
   }();
   return table;
 }
+/// The series group of `r` (Root::series) at t: out(j, col + k) = d^j y_k / dt^j for
+/// j < jCount. y_k' = y_{k-1} (k ≥ 1) and y_0' = c y_{p-1}, so derivatives rotate the values.
+template <typename T, class M>
+void evaluateSeries(const Root& r, double t, std::uint32_t jCount, M& out, std::uint32_t col) {
+  const std::uint32_t p = r.multiplicity;
+  assert(p <= kMaxDerivatives && std::abs(r.seriesC) <= 1.0);
+  const T c = static_cast<T>(r.seriesC), tr = static_cast<T>(t);
+  // |c| ≤ 1 and t ≤ 1: term m is at most 1/(pm)!, below 1e-40 for pm ≥ 36; a term below
+  // 1e-36 of the sum (under every precision's rounding) ends the sum early (short patches:
+  // c ~ 1e-10, two or three terms).
+  const std::uint32_t terms = 36 / p + 2;
+  T ctp = c;  // c t^p
+  for (std::uint32_t q = 0; q < p; ++q) ctp = ctp * tr;
+  std::array<T, kMaxDerivatives> y;
+  T tk = T(1);  // t^k / k!
+  for (std::uint32_t k = 0; k < p; ++k) {
+    if (k > 0) tk = tk * tr / static_cast<T>(k);
+    T term = tk, sum = tk;
+    for (std::uint32_t m = 1; m < terms; ++m) {
+      // term_m = term_{m-1} · c t^p / ((k+pm-p+1) ··· (k+pm)), the product exact in double
+      double product = 1.0;
+      for (std::uint32_t q = k + p * m - p + 1; q <= k + p * m; ++q) product *= q;
+      term = term * ctp / static_cast<T>(product);
+      sum += term;
+      if (term * term <= T(1e-72) * sum * sum) break;
+    }
+    y[k] = sum;
+  }
+  for (std::uint32_t j = 0; j < jCount; ++j) {
+    for (std::uint32_t k = 0; k < p; ++k) out(j, col + k) = y[k];
+    const T first = c * y[p - 1];
+    for (std::uint32_t k = p - 1; k > 0; --k) y[k] = y[k - 1];
+    y[0] = first;
+  }
+}
+
 }  // namespace
 
 template <class M>
@@ -171,6 +221,11 @@ void ModeBasis::evaluate(double t, std::uint32_t maxDerivative, M& out) const {
   std::uint32_t col = 0;
   for (std::size_t g = 0; g < roots_.size(); ++g) {
     const Root& r = roots_[g];
+    if (r.series) {
+      evaluateSeries<T>(r, t, jCount, out, col);
+      col += r.multiplicity;
+      continue;
+    }
     const Recurrence& rec = recurrences_[g];
     const std::vector<T>* alphaT;
     const std::vector<T>* bT;

@@ -1,4 +1,4 @@
-// Per-mode solution bases of separable periodic operators (math-notes §2): for each
+// Per-mode solution bases of separable periodic operators (docs/derivations.md §2.1–§2.2): for each
 // characteristic root μ of multiplicity m, the functions p_k(x) e^{μ(t-c)} (k < m) on the
 // local parameter t ∈ [0, 1], where c = 1 and x = 1 - t for Re μ > 0 (growing exponentials
 // written as e^{μ(t-1)}, bounded on [0, 1]), c = 0 and x = t otherwise, and the p_k are
@@ -40,11 +40,24 @@ inline Eigen::Map<const Eigen::Matrix<Real, Eigen::Dynamic, 3, Eigen::RowMajor>>
   return {c.data(), static_cast<Eigen::Index>(c.size() / 3), 3};
 }
 
-/// One characteristic root (Im μ ≥ 0; a complex one stands for its conjugate too).
+/// One characteristic root (Im μ ≥ 0; a complex one stands for its conjugate too), or a
+/// whole mode as a power series (`series`): the solutions of y^(p) = c y, p = multiplicity,
+/// c = seriesC, spanned by y_k(t) = Σ_m c^m t^{k+pm} / (k+pm)! for k < p. modeRoots uses the
+/// series where the roots all lie within kSeriesRadius of 0 (Fu modes with κ < 1 in t): p
+/// simple exponentials with nearly equal roots are nearly dependent (their Vandermonde
+/// matrix has condition ~κ^{1-p}), while the y_k are close to t^k/k!: as well conditioned
+/// as the polynomials of mode 0 (docs/spectral.md, "Short patches").
 struct Root {
   std::complex<double> mu;
   std::uint32_t multiplicity = 1;
+  bool series = false;
+  double seriesC = 0.0;
 };
+
+/// Root magnitude |μ| (in t) below which a Fu mode is evaluated as a power series (Root).
+/// At |μ| = 1 the exponential basis is a scaled DFT matrix (condition 1) and the series
+/// needs 6 terms for 1e-34, so both are exact there.
+constexpr double kSeriesRadius = 1.0;
 
 /// The roots of mode n of `op` in the local parameter t = (u - u0) / length.
 std::vector<Root> modeRoots(const SpectralOperator& op, std::uint32_t n, double length);
@@ -71,6 +84,10 @@ class ModeBasis {
   /// multiplicity m ≥ 2 overlap (|root| < 3m), and their near-dependence costs more than
   /// ~6 digits (m ≥ 8 or |root| < m; measured in docs/spectral.md).
   bool extended() const { return extended_ || size_ > kSmallOrder; }
+  /// Whether the basis is (near) polynomial of degree < 6: a power series (Root::series) or
+  /// the polynomials of a 6-fold (or lower) root 0. Such a basis evaluates accurately in
+  /// double, but its systems are solved in long double (solveModeTiered in patch.cpp).
+  bool nearPolynomial() const { return nearPolynomial_; }
   /// out(j, k) = d^j φ_k / dt^j at t, for j = 0..maxDerivative (SmallMatrix, MatrixR or
   /// MatrixQ: evaluated in that matrix's precision).
   template <class M>
@@ -83,6 +100,7 @@ class ModeBasis {
   std::vector<Recurrence> recurrences_;  ///< per root
   std::uint32_t size_ = 0;
   bool extended_ = false;
+  bool nearPolynomial_ = false;
 };
 
 }  // namespace pdesurf::spectral

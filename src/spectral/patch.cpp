@@ -1,4 +1,4 @@
-// Solving and evaluating one spectral patch (math-notes §2; seed 003 §2.1, seed 002 §3.2).
+// Solving and evaluating one spectral patch (docs/derivations.md §2; seed 003 §2.1, seed 002 §3.2).
 #include "spectral/eigen_warnings.hpp"  // first: see the file
 
 #include <algorithm>
@@ -152,6 +152,18 @@ void solveModeTiered(const spectral::ModeBasis& basis,
                      const std::vector<spectral::ConditionData>& conditions, double uStart,
                      double length, std::uint32_t n, SpectralPatch::ModeCoefficients& coef) {
   ModePrecision tier = basis.extended() ? ModePrecision::Extended : ModePrecision::Double;
+  if (basis.nearPolynomial()) {
+    // Mode 0 and short patches (basis.hpp): a near-polynomial basis is evaluated accurately
+    // in double, but its system loses the digits of its condition (~1e3) against data whose
+    // derivative conditions are h^k times smaller than its positions (short chain patches);
+    // solved in long double, the coefficients are exact to double rounding and the chain
+    // stays C2 to rounding at any section count (tests/spectral/global_chain_test.cpp).
+    const double residual =
+        solveMode<spectral::MatrixR>(basis, conditions, uStart, length, n, coef);
+    coef.precision = ModePrecision::Double;
+    if (residual <= kEscalateResidual) return;
+    tier = ModePrecision::Quad;
+  }
   for (;;) {
     double residual = 0.0;
     switch (tier) {
@@ -254,7 +266,7 @@ SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, dou
   const bool anyTail = std::any_of(conditions.begin(), conditions.end(),
                                    [](const ConditionData& c) { return !c.tail.empty(); });
   if (anyTail) {
-    // Remainder on the basis of the first truncated mode, M+1 (math-notes §2): cardinal
+    // Remainder on the basis of the first truncated mode, M+1 (docs/derivations.md §2.3): cardinal
     // functions ψ_i with L_j ψ_i = δ_ij, so R = Σ ψ_i(t) d_i(v) meets every condition.
     auto tail = std::make_shared<SpectralTailData>();
     tail->basis = ModeBasis(modeRoots(op, modes + 1, length));

@@ -1,4 +1,4 @@
-// The shape of a sculpting force along one parameter (seed eq. 9, math-notes §1).
+// The shape of a sculpting force along one parameter (seed eq. 9; docs/derivations.md §1.5).
 #pragma once
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Closed-form patches and strip solvers (seed 000 §3, math-notes §1).
+// Closed-form patches and strip solvers (seed 000 §3; docs/derivations.md §1.2–§1.4).
 #include <cmath>
 #include <numbers>
 #include <queue>
@@ -42,7 +42,7 @@ Vec3 minimiser(const Vec3& a, const Vec3& b) {
 }
 
 /// The PDE residual's part along (6u-3) is a1 C3 + a2 C9/3, along (6v-3) it is
-/// a2 C6 + a1 C8/3 (math-notes §1); one patch alone zeroes it with
+/// a2 C6 + a1 C8/3 (docs/derivations.md §1.3); one patch alone zeroes it with
 /// C3 = -(a2/a1) C9/3, C6 = -(a1/a2) C8/3 (ratio first: no overflow for large a1, a2).
 /// Arguments: (a1, a2, C9) for C3, (a2, a1, C8) for C6.
 Vec3 ownCubic(const Vec3& a, const Vec3& other, const Vec3& cross) {
@@ -78,7 +78,7 @@ std::array<Vec3, 2> singlePatchCubics(const std::array<Vec3, 8>& p, const Vec3& 
 
 namespace {
 
-/// The particular solution of f0 on `region` of frame f (seed eq. 12, math-notes §1).
+/// The particular solution of f0 on `region` of frame f (seed eq. 12; docs/derivations.md §1.5).
 ForceTerm forceTerm(const Frame& f, const Vec3& f0, const Region& r) {
   const double lu = r.u1 - r.u0, lv = r.v1 - r.v0;
   ForceTerm t;

@@ -1,4 +1,4 @@
-// Strips, edges and orientation of a vertex-frame model (math-notes §1, "strips").
+// Strips, edges and orientation of a vertex-frame model (docs/derivations.md §1.4).
 #include <algorithm>
 #include <utility>
 

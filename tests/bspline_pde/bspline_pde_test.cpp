@@ -1,7 +1,7 @@
-// The B-spline PDE engine (seed 004; math-notes §3): the basis and its mask rows against the
-// seed's closed forms, polynomial reproduction, the sixth mixed derivative on every span,
-// the Kronecker solve against a dense solve, invertibility over a range of n, untouched
-// given points, errors, boundaries from curves, the seed's examples 1–4 and tessellation.
+// The B-spline PDE engine (seed 004; docs/derivations.md §3): the basis and its mask rows against
+// the seed's closed forms, polynomial reproduction, the sixth mixed derivative on every span, the
+// Kronecker solve against a dense solve, invertibility over a range of n, untouched given points,
+// errors, boundaries from curves, the seed's examples 1–4 and tessellation.
 #include "spectral/eigen_warnings.hpp"  // first: before Eigen
 
 #include <algorithm>

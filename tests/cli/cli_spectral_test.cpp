@@ -88,7 +88,7 @@ TEST_F(CliSpectral, SampleMatchesTheLibraryAndInfoReportsJoints) {
   ASSERT_EQ(info.code, 0) << info.err;
   const Json ij = Json::parse(info.out);
   EXPECT_EQ(ij["type"], "cross-sections");
-  EXPECT_EQ(ij["method"], "c2");
+  EXPECT_EQ(ij["method"], "global");  // the default
   EXPECT_EQ(ij["joints"].size(), chain.patches.size() - 1);
   for (const Json& g : ij["joints"]) {
     EXPECT_LT(g["c0_relative"].get<double>(), 1e-9);
@@ -137,7 +137,7 @@ TEST_F(CliSpectral, RefusesWithExitCodesAndLeavesNoFile) {
             R"({"type": "cross-sections", "curves": [{"points": [[0,0,0],[1,0,0],[0,1,0]]}]})");
   CliRun r = run("build bad.json -o bad.obj");
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("bad.json: $.curves: the \"c2\" method needs at least 4 curves"),
+  EXPECT_NE(r.err.find("bad.json: $.curves: the \"global\" method needs at least 2 curves"),
             std::string::npos)
       << r.err;
   EXPECT_EQ(work_.entries(), std::vector<std::string>{"bad.json"});

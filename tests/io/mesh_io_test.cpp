@@ -415,17 +415,42 @@ TEST(MeshIoRead, TruncatedBinaryPlyNamesTheFile) {
   EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }), "cut.ply"));
 }
 
-TEST(MeshIoRead, TruncatedOffNamesTheFile) {
+TEST(MeshIoRead, TruncatedOrMalformedOffNamesTheFileAndTheLine) {
   TempDir dir;
   const std::string path = dir.file("cut.off");
+  // Too short for the header's counts: refused before CGAL sizes anything by them.
   writeText(path, "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0");
-  EXPECT_TRUE(
-      contains(errorOf([&] { readMesh(path); }), "cut.off: unexpected end of file in vertex 3"));
-  writeText(path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1");
-  EXPECT_TRUE(
-      contains(errorOf([&] { readMesh(path); }), "cut.off: unexpected end of file in face 0"));
-  writeText(path, "OFF\n3 1 0\n0 0 0\n1 zero 0\n");
-  EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }), "cut.off: line 4: expected a number"));
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }),
+                       "cut.off: the file is too short for the counts in its header (4 vertices, "
+                       "4 faces"));
+  writeText(path, "OFF\n400000000 1 0\n0 0 0\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }), "cut.off: the file is too short"));
+  // Long enough, but the lines run out.
+  writeText(path, "OFF\n3 1 0\n0 0 0 \n1 0 0 \n0 1 0 \n\n\n\n\n\n\n\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }),
+                       "cut.off: unexpected end of file: the header announces 3 vertices and 1 "
+                       "faces, the file has 3 lines of them"));
+  // A malformed line: the file, the line and its text.
+  writeText(path, "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }),
+                       "cut.off: line 4: '1 zero 0' is not a list of numbers"));
+  writeText(path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1\n3 0 1 2\n\n\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }),
+                       "cut.off: line 5: '0 1' is not a valid OFF vertex line"));
+  writeText(path, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n\n\n\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(path); }), "cut.off: face 0 has 2 corners"));
+}
+
+TEST(MeshIoRead, CoordinatesBeyondSinglePrecisionNameTheVertex) {
+  TempDir dir;
+  writeText(dir.file("big.off"), "OFF\n3 1 0\n0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("big.off")); }),
+                       "big.off: vertex 1 has a non-finite coordinate (inf)"));
+  writeText(dir.file("big.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+            "property double z\nend_header\n0 0 0\n0 -1e300 0\n0 1 0\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("big.ply")); }),
+                       "big.ply: vertex 1 has a non-finite coordinate (-inf)"));
 }
 
 TEST(MeshIoRead, OutOfRangeIndicesNameTheFile) {
@@ -438,7 +463,8 @@ TEST(MeshIoRead, OutOfRangeIndicesNameTheFile) {
                        "bad.ply: face 1 refers to vertex 9 but the file has 3 vertices"));
   writeText(dir.file("bad.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
   EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("bad.off")); }),
-                       "bad.off: line 6: face 0 refers to vertex 3 but the file has 3 vertices"));
+                       "bad.off: line 6: face 0 refers to a vertex the file does not have (it has "
+                       "3 vertices)"));
   writeText(dir.file("bad.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 -4\n");
   EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("bad.obj")); }),
                        "bad.obj: line 5: face 1 refers to vertex -4"));
@@ -557,6 +583,17 @@ TEST(MeshIoRead, AsciiStlIsIndexed) {
 
   writeText(dir.file("short.stl"), "not an stl");
   EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("short.stl")); }), "short.stl"));
+  // Cut short; when shorter than a binary header, CGAL's reader takes it for an empty file.
+  writeText(dir.file("cut.stl"), text.substr(0, text.find("endloop")));
+  const std::string cut = errorOf([&] { readMesh(dir.file("cut.stl")); });
+  EXPECT_TRUE(contains(cut, "cut.stl: "));
+  EXPECT_TRUE(contains(cut, "not valid ASCII STL"));
+  writeText(dir.file("tiny.stl"), "solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\n");
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("tiny.stl")); }),
+                       "tiny.stl: not valid ASCII STL: 0 of its 0 complete facets could be read, "
+                       "and it has no 'endsolid'"));
+  writeText(dir.file("bad.stl"), text.replace(text.find("vertex 0"), 8, "vertex x"));
+  EXPECT_TRUE(contains(errorOf([&] { readMesh(dir.file("bad.stl")); }), "bad.stl: "));
 }
 
 TEST(MeshIoRead, CorruptGlbNamesTheFile) {

@@ -174,8 +174,9 @@ TEST(SpectralIo, RefusesBadSpineEditsAndShortChains) {
   EXPECT_NE(refusal(ugail4(R"(, "spine": [{"u": [0.5, 0.2], "moved": [[0,0,0], [0,0,1]]}])"))
                 .find("$.spine[0].u[1]: u values must increase"),
             std::string::npos);
-  const std::string three = fmt::format(R"({{"type": "cross-sections", "curves": [{}, {}, {}]}})",
-                                        circle(1, 0), circle(1, 1), circle(1, 2));
+  const std::string three =
+      fmt::format(R"({{"type": "cross-sections", "method": "c2", "curves": [{}, {}, {}]}})",
+                  circle(1, 0), circle(1, 1), circle(1, 2));
   EXPECT_NE(refusal(three).find("$.curves: the \"c2\" method needs at least 4 curves, found 3"),
             std::string::npos);
   const std::string five = fmt::format(
@@ -184,6 +185,37 @@ TEST(SpectralIo, RefusesBadSpineEditsAndShortChains) {
   EXPECT_NE(refusal(five).find("needs at least 6 curves, found 5"), std::string::npos);
   EXPECT_NE(refusal(R"({"type": "cross-sections", "a": 0, "curves": []})").find("$.a: a = 0"),
             std::string::npos);
+}
+
+TEST(SpectralIo, GlobalChainOptionsRoundTripAndAreChecked) {
+  const std::string curves =
+      fmt::format("[{}, {}, {}, {}]", circle(1, 0), circle(1.2, 1), circle(0.9, 3), circle(1, 4));
+  const std::string text = fmt::format(
+      R"({{"type": "cross-sections", "spacing": "mean-distance", "ends": "estimated",
+           "u": [0, 1, 3, 4.5], "curves": {}}})",
+      curves);
+  const auto parsed = std::get<CrossSectionModel>(parseModel(text, "m.json"));
+  EXPECT_EQ(parsed.options.method, ChainMethod::Global);  // the default
+  EXPECT_EQ(parsed.options.spacing, ChainSpacing::MeanDistance);
+  EXPECT_EQ(parsed.options.ends, ChainEnds::Estimated);
+  EXPECT_EQ(parsed.options.u, (std::vector<double>{0, 1, 3, 4.5}));
+  const auto again = std::get<CrossSectionModel>(parseModel(serializeModel(parsed), "again.json"));
+  EXPECT_EQ(again.options.method, ChainMethod::Global);
+  EXPECT_EQ(again.options.spacing, ChainSpacing::MeanDistance);
+  EXPECT_EQ(again.options.ends, ChainEnds::Estimated);
+  EXPECT_EQ(again.options.u, parsed.options.u);
+  EXPECT_EQ(serializeModel(again), serializeModel(parsed));
+  auto with = [&](const std::string& extra) {
+    return fmt::format(R"({{"type": "cross-sections", {}, "curves": {}}})", extra, curves);
+  };
+  EXPECT_NE(refusal(with(R"("method": "c2", "u": [0, 1, 2, 3])"))
+                .find(R"($.u: "u" belongs to the "global" method, not "c2")"),
+            std::string::npos);
+  EXPECT_NE(refusal(with(R"("u": [0, 1, 1, 3])")).find("$.u[2]: u values must increase"),
+            std::string::npos);
+  EXPECT_NE(refusal(with(R"("u": [0, 1, 3])")).find("$.u: expected one u per curve (4), found 3"),
+            std::string::npos);
+  EXPECT_NE(refusal(with(R"("spacing": "arc")")).find("$.spacing"), std::string::npos);
 }
 
 TEST(SpectralIo, SolverRefusalsNameTheFile) {

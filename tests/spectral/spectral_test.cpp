@@ -1,4 +1,4 @@
-// The spectral engine (seeds 002, 003; math-notes §2): conditions, PDE residuals, an
+// The spectral engine (seeds 002, 003; docs/derivations.md §2): conditions, PDE residuals, an
 // independent ODE check of the mode bases, remainder, chains, fitting, spine, errors,
 // tessellation.
 #include <cmath>
@@ -534,6 +534,7 @@ TEST(SpectralChain, MethodTwoJoinsAreExactlyC2AndInterpolateEveryCurve) {
                      " a = " + std::to_string(a));
         const std::vector<CurveInput> curves = bentTube(count, sampled);
         CrossSectionOptions o;
+        o.method = ChainMethod::ExactC2;
         o.a = a;
         const CrossSectionChain chain = buildCrossSectionChain(curves, o);
         for (const JointGap& g : measureJointGaps(chain)) {
@@ -627,7 +628,11 @@ TEST(SpectralErrors, BadInputIsNamed) {
   expectError([&] { fitFourier(badV, 1); }, "increase strictly");
   std::vector<CurveInput> three = {ring(1, Vec3(0, 0, 0), 2), ring(1, Vec3(0, 0, 1), 2),
                                    ring(1, Vec3(0, 0, 2), 2)};
-  expectError([&] { buildCrossSectionChain(three); }, "at least 4 curves, got 3");
+  CrossSectionOptions c2;
+  c2.method = ChainMethod::ExactC2;
+  expectError([&] { buildCrossSectionChain(three, c2); }, "at least 4 curves, got 3");
+  expectError([&] { buildCrossSectionChain(std::span(three).first(1)); },
+              "(method \"global\") needs at least 2 curves, got 1");
   CrossSectionOptions m1;
   m1.method = ChainMethod::SharedCurves;
   expectError([&] { buildCrossSectionChain(bentTube(5, false), m1); }, "at least 6");

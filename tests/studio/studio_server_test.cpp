@@ -1,22 +1,30 @@
 // Tests of the studio server (apps/studio): the server in-process on 127.0.0.1, a free
-// port and a temporary root folder, talked to with httplib::Client; and `pdesurf studio`.
+// port and a temporary root folder, talked to with httplib::Client (carrying the server's
+// token, as the page does); the checks of who may ask ("Security" in apps/studio/README.md);
+// and `pdesurf studio`, killed too.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <spawn.h>
 #include <stdlib.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -120,17 +128,19 @@ class StudioServerTest : public ::testing::Test {
     fs::remove_all(outside_, ignored);
   }
 
-  void startServer() {
+  void startServer(bool requireToken = true) {
     client_.reset();
     server_.reset();
-    server_ = std::make_unique<StudioServer>(model_.string(),
-                                             StudioOptions{root_.string(), "127.0.0.1", 0});
-    const int port = server_->start();
-    ASSERT_GT(port, 0);
-    client_ = std::make_unique<httplib::Client>("127.0.0.1", port);
+    StudioOptions options{root_.string(), "127.0.0.1", 0};
+    options.requireToken = requireToken;
+    server_ = std::make_unique<StudioServer>(model_.string(), options);
+    port_ = server_->start();
+    ASSERT_GT(port_, 0);
+    client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
     client_->set_connection_timeout(5);
     client_->set_read_timeout(20);
     client_->set_write_timeout(20);
+    if (requireToken) client_->set_default_headers({{kTokenHeader, server_->token()}});
   }
 
   /// The server "crashes": gone without saving, its autosave left behind.
@@ -176,6 +186,7 @@ class StudioServerTest : public ::testing::Test {
   fs::path root_, outside_, model_;
   std::unique_ptr<StudioServer> server_;
   std::unique_ptr<httplib::Client> client_;
+  int port_ = 0;
 };
 
 TEST_F(StudioServerTest, ModelFetch) {
@@ -711,6 +722,416 @@ TEST_F(StudioServerTest, ExportWritesAReadableMesh) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Who may ask: Host, Origin, Content-Type and the token (apps/studio/README.md, "Security")
+
+/// Everything a refused request could have changed: the model's file, every file under the
+/// root (the autosave included), and the session as GET /api/model reports it.
+struct Snapshot {
+  std::map<std::string, std::string> files;
+  Json session;
+  bool operator==(const Snapshot&) const = default;
+};
+
+/// The answer and the status of a request sent exactly as given: only these headers (httplib
+/// adds Host unless it is given, and Content-Length), no token unless it is among them.
+httplib::Result rawRequest(int port, const std::string& method, const std::string& path,
+                           const httplib::Headers& headers, const std::string& body = {}) {
+  httplib::Client client("127.0.0.1", port);
+  client.set_connection_timeout(5);
+  client.set_read_timeout(20);
+  if (method == "GET") return client.Get(path.c_str(), headers);
+  // An empty content type: httplib sends none (a test gives it among the headers).
+  if (method == "POST") return client.Post(path.c_str(), headers, body, "");
+  if (method == "PUT") return client.Put(path.c_str(), headers, body, "");
+  return client.Delete(path.c_str(), headers, body, "");
+}
+
+/// What a whole-server test sends on each POST route: a body the route accepts in the
+/// grid fixture's state (with a pending autosave, so recover works).
+const std::vector<std::pair<std::string, std::string>>& postRoutes() {
+  static const std::vector<std::pair<std::string, std::string>> routes = {
+      {"/api/recover", "{}"},
+      {"/api/edit", R"({"op": "move-vertex", "vertex": 12, "position": [1, 1, 0.5]})"},
+      {"/api/end-group", "{}"},
+      {"/api/transform", R"({"scale": 3})"},
+      {"/api/undo", "{}"},
+      {"/api/redo", "{}"},
+      {"/api/export", R"({"path": "attack.obj", "resolution": 3})"},
+      {"/api/save-as", R"({"path": "attack.json"})"},
+      {"/api/save", "{}"},
+      {"/api/open", R"({"path": "grid.json"})"},
+      {"/api/discard-recovery", "{}"},
+  };
+  return routes;
+}
+
+/// Writes `bytes` to a new connection to 127.0.0.1:port and reads the answer until the
+/// server closes (at most `timeout`). Bytes that are not a `whole` request are followed by
+/// the end of the sending side (else the server waits for the rest); a whole one says
+/// `Connection: close` (httplib drops a request whose sender has ended).
+std::string sendRawBytes(int port, const std::string& bytes, bool whole,
+                         std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return "(no socket)";
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string answer;
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
+    for (std::size_t done = 0; done < bytes.size();) {
+      const ssize_t n = ::send(fd, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
+      if (n <= 0) break;
+      done += static_cast<std::size_t>(n);
+    }
+    if (!whole) ::shutdown(fd, SHUT_WR);
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    for (;;) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+          end - std::chrono::steady_clock::now());
+      pollfd p{fd, POLLIN, 0};
+      if (left.count() <= 0 || ::poll(&p, 1, static_cast<int>(left.count())) <= 0) break;
+      char buf[4096];
+      const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+      if (n <= 0) break;
+      answer.append(buf, static_cast<std::size_t>(n));
+    }
+  }
+  ::close(fd);
+  return answer;
+}
+
+/// The status of a raw HTTP answer, or 0 when the server closed without one.
+int rawStatus(const std::string& answer) {
+  if (answer.rfind("HTTP/1.1 ", 0) != 0 || answer.size() < 12) return 0;
+  return std::atoi(answer.substr(9, 3).c_str());
+}
+
+class StudioSecurityTest : public StudioServerTest {
+ protected:
+  void SetUp() override {
+    StudioServerTest::SetUp();
+    offerRecovery();
+  }
+
+  /// Opens grid.json with a journal that differs from it, so that recover and discard have
+  /// work to do.
+  void offerRecovery() {
+    Json moved = Json::parse(gridModel());
+    moved["vertices"][12] = {1, 1, 0.9};
+    writeText(root_ / "grid.json.autosave", moved.dump(2));
+    ASSERT_EQ(post("/api/open", R"({"path": "grid.json"})")->status, 200);
+    ASSERT_EQ(model()["recovery"], true);
+  }
+
+  std::string authority() const { return "127.0.0.1:" + std::to_string(port_); }
+  /// The headers of the studio's page: its Host, its Origin, the token, JSON.
+  httplib::Headers page() const {
+    return {{"Host", authority()},
+            {"Origin", "http://" + authority()},
+            {kTokenHeader, server_->token()},
+            {"Content-Type", "application/json"}};
+  }
+  static httplib::Headers with(httplib::Headers headers, const std::string& name,
+                               const std::string& value) {
+    headers.erase(name);
+    if (!value.empty()) headers.emplace(name, value);
+    return headers;
+  }
+
+  Snapshot snapshot() {
+    server_->flushJournal();
+    Snapshot s;
+    for (const auto& entry : fs::recursive_directory_iterator(root_))
+      if (entry.is_regular_file())
+        s.files[fs::relative(entry.path(), root_).generic_string()] = readText(entry.path());
+    s.session = model();
+    return s;
+  }
+
+  /// Sends every POST route with `headers`: each is refused with `status` and a message
+  /// containing `reason`, and nothing changes.
+  void expectEveryPostRefused(const httplib::Headers& headers, int status,
+                              const std::string& reason) {
+    const Snapshot before = snapshot();
+    for (const auto& [route, body] : postRoutes()) {
+      const auto [got, message] = failure(rawRequest(port_, "POST", route, headers, body));
+      EXPECT_EQ(got, status) << route << ": " << message;
+      EXPECT_NE(message.find(reason), std::string::npos) << route << ": " << message;
+    }
+    EXPECT_EQ(snapshot(), before);
+  }
+
+  /// Every POST route with `headers`: each succeeds.
+  void expectEveryPostServed(const httplib::Headers& headers) {
+    offerRecovery();
+    const Snapshot before = snapshot();
+    for (const auto& [route, body] : postRoutes()) {
+      if (route == "/api/discard-recovery") offerRecovery();  // save-as took the first one
+      const auto r = rawRequest(port_, "POST", route, headers, body);
+      ASSERT_TRUE(r) << route;
+      EXPECT_EQ(r->status, 200) << route << ": " << r->body;
+    }
+    EXPECT_NE(snapshot(), before);
+    EXPECT_TRUE(fs::exists(root_ / "attack.json"));
+    EXPECT_TRUE(fs::exists(root_ / "attack.obj"));
+  }
+};
+
+TEST_F(StudioSecurityTest, TheTokenIsRandomHexInThePrintedUrl) {
+  const std::string token = server_->token();
+  EXPECT_EQ(token.size(), 48u);  // 192 bits
+  EXPECT_EQ(token.find_first_not_of("0123456789abcdef"), std::string::npos) << token;
+  EXPECT_EQ(server_->url(), "http://" + authority() + "/?token=" + token);
+  StudioServer other(model_.string(), StudioOptions{root_.string(), "127.0.0.1", 0});
+  EXPECT_NE(other.token(), token);
+  EXPECT_EQ(other.token().size(), token.size());
+}
+
+TEST_F(StudioSecurityTest, AForeignHostIsRefusedBeforeAnyHandler) {
+  const std::string port = std::to_string(port_);
+  const Snapshot before = snapshot();
+  // DNS rebinding: another name, or another port, for this address.
+  for (const std::string& host :
+       {"evil.example:" + port, std::string("evil.example"),
+        "127.0.0.1:" + std::to_string(port_ + 1), std::string("127.0.0.1"),
+        "localhost.evil.example:" + port, "127.0.0.1:" + port + ".evil", "[::1]:" + port}) {
+    const httplib::Headers headers = with(page(), "Host", host);
+    for (const auto& [method, route] :
+         std::vector<std::pair<std::string, std::string>>{{"GET", "/"},
+                                                          {"GET", "/api/model"},
+                                                          {"GET", "/api/mesh"},
+                                                          {"GET", "/api/files"},
+                                                          {"POST", "/api/transform"},
+                                                          {"POST", "/api/save"}}) {
+      const auto [status, message] =
+          failure(rawRequest(port_, method, route, headers, R"({"scale": 3})"));
+      EXPECT_EQ(status, 403) << host << " " << route << ": " << message;
+      EXPECT_NE(message.find("Host"), std::string::npos) << message;
+    }
+  }
+  // No Host at all (HTTP/1.0 style), or two.
+  for (const std::string& hosts : {std::string(""), "Host: " + authority() + "\r\nHost: evil\r\n"})
+    EXPECT_EQ(rawStatus(sendRawBytes(port_,
+                                     "GET /api/model HTTP/1.1\r\nConnection: close\r\n" + hosts +
+                                         kTokenHeader + ": " + server_->token() + "\r\n\r\n",
+                                     true)),
+              403)
+        << hosts;
+  EXPECT_EQ(snapshot(), before);
+  // The names of this address: as bound, and localhost (any case).
+  for (const std::string& host : {authority(), "localhost:" + port, "LocalHost:" + port}) {
+    const auto r = rawRequest(port_, "GET", "/api/model", with(page(), "Host", host));
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 200) << host << ": " << r->body;
+  }
+}
+
+TEST_F(StudioSecurityTest, AForeignOriginIsRefusedOnEveryPostRoute) {
+  for (const std::string& origin :
+       {std::string("http://evil.example"), std::string("null"),
+        "http://127.0.0.1:" + std::to_string(port_ + 1), "https://" + authority(),
+        "http://localhost.evil.example:" + std::to_string(port_), "http://" + authority() + ".x"})
+    expectEveryPostRefused(with(page(), "Origin", origin), 403, "Origin");
+  // Reading is refused to another page too.
+  const auto [status, message] = failure(
+      rawRequest(port_, "GET", "/api/model", with(page(), "Origin", "http://evil.example")));
+  EXPECT_EQ(status, 403) << message;
+  // The page's own origin, under either name, and no Origin at all (a program) are served.
+  expectEveryPostServed(page());
+  expectEveryPostServed(with(page(), "Origin", "http://localhost:" + std::to_string(port_)));
+  expectEveryPostServed(with(page(), "Origin", ""));
+}
+
+TEST_F(StudioSecurityTest, APostMustDeclareAJsonBody) {
+  // A form or a "simple" fetch() of another page sends these without a preflight.
+  for (const std::string& type :
+       {std::string("text/plain"), std::string("text/plain;charset=UTF-8"),
+        std::string("application/x-www-form-urlencoded"), std::string("application/jsonx"),
+        std::string("text/plain; application/json")})
+    expectEveryPostRefused(with(page(), "Content-Type", type), 415, "Content-Type");
+  // A multipart body httplib parses itself, before any handler: "{}" is none (400).
+  expectEveryPostRefused(with(page(), "Content-Type", "multipart/form-data; boundary=x"), 400,
+                         "bad request");
+  // No Content-Type at all (httplib's client always sends one: a request of bytes).
+  const Snapshot before = snapshot();
+  for (const auto& [route, body] : postRoutes())
+    EXPECT_EQ(rawStatus(sendRawBytes(
+                  port_,
+                  "POST " + route + " HTTP/1.1\r\nHost: " + authority() +
+                      "\r\nConnection: close\r\n" + kTokenHeader + ": " + server_->token() +
+                      "\r\nContent-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body,
+                  true)),
+              415)
+        << route;
+  EXPECT_EQ(snapshot(), before);
+  expectEveryPostServed(with(page(), "Content-Type", "Application/JSON; charset=utf-8"));
+}
+
+TEST_F(StudioSecurityTest, EveryApiRequestNeedsTheToken) {
+  std::string flipped = server_->token();
+  flipped.back() = flipped.back() == '0' ? '1' : '0';
+  std::string upper = server_->token();
+  for (char& c : upper) c = static_cast<char>(std::toupper(c));
+  const std::string sameLength(server_->token().size(), '0');
+  for (const std::string& token : {std::string(""), sameLength, flipped, server_->token().substr(1),
+                                   server_->token() + "0", upper, std::string("null")}) {
+    if (token == server_->token()) continue;  // an all-digit token upper-cased
+    expectEveryPostRefused(with(page(), kTokenHeader, token), 403, kTokenHeader);
+    for (const char* route : {"/api/model", "/api/mesh?resolution=3", "/api/files"}) {
+      const auto [status, message] =
+          failure(rawRequest(port_, "GET", route, with(page(), kTokenHeader, token)));
+      EXPECT_EQ(status, 403) << route << " with \"" << token << "\": " << message;
+    }
+  }
+  // The right token twice with a wrong one: refused (one header, one value).
+  httplib::Headers twice = page();
+  twice.emplace(kTokenHeader, sameLength);
+  expectEveryPostRefused(twice, 403, kTokenHeader);
+  // The page itself is served without the token (its address carries it to the script).
+  const auto index = rawRequest(port_, "GET", "/", with(page(), kTokenHeader, ""));
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 200);
+  EXPECT_EQ(index->get_header_value("X-Frame-Options"), "DENY");
+  expectEveryPostServed(page());
+}
+
+TEST_F(StudioSecurityTest, WithoutATokenHostOriginAndJsonAreStillChecked) {
+  startServer(false);
+  EXPECT_EQ(server_->token(), "");
+  EXPECT_EQ(server_->url(), "http://" + authority() + "/");
+  const httplib::Headers noToken = with(page(), kTokenHeader, "");
+  const auto r = rawRequest(port_, "GET", "/api/model", noToken);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  expectEveryPostRefused(with(noToken, "Host", "evil.example:" + std::to_string(port_)), 403,
+                         "Host");
+  expectEveryPostRefused(with(noToken, "Origin", "http://evil.example"), 403, "Origin");
+  expectEveryPostRefused(with(noToken, "Content-Type", "text/plain"), 415, "Content-Type");
+}
+
+TEST_F(StudioServerTest, OnIpv6LoopbackTheHostIsItsBracketedAddressOrLocalhost) {
+  StudioServer v6(model_.string(), StudioOptions{root_.string(), "::1", 0});
+  int port = 0;
+  try {
+    port = v6.start();
+  } catch (const StudioError& e) {
+    GTEST_SKIP() << "no IPv6 loopback here: " << e.what();
+  }
+  const std::string p = std::to_string(port);
+  EXPECT_EQ(v6.url(), "http://[::1]:" + p + "/?token=" + v6.token());
+  httplib::Client client("::1", port);
+  client.set_connection_timeout(5);
+  const auto ask = [&](const std::string& host) {
+    const auto r = client.Get("/api/model", {{"Host", host}, {kTokenHeader, v6.token()}});
+    return r ? r->status : -1;
+  };
+  EXPECT_EQ(ask("[::1]:" + p), 200);
+  EXPECT_EQ(ask("localhost:" + p), 200);
+  EXPECT_EQ(ask("127.0.0.1:" + p), 403);
+  EXPECT_EQ(ask("evil.example:" + p), 403);
+}
+
+TEST_F(StudioSecurityTest, FifteenHundredGarbageRequestsChangeNothing) {
+  constexpr int kRequests = 1500;
+  const Snapshot before = snapshot();
+  const std::string port = std::to_string(port_);
+  const std::string big(2 << 20, 'x');
+  std::uint32_t random = 12345;  // a fixed LCG: the same garbage every run
+  const auto next = [&random] { return random = random * 1664525u + 1013904223u; };
+  std::map<int, int> statuses;
+  for (int i = 0; i < kRequests; ++i) {
+    int status = 0;
+    switch (i % 15) {
+      case 0: {  // bytes that are not HTTP at all
+        std::string bytes(64 + next() % 512, '\0');
+        for (char& c : bytes) c = static_cast<char>(next() >> 24);
+        status = rawStatus(sendRawBytes(port_, bytes, false));
+        break;
+      }
+      case 1:  // a request line and headers broken off
+        status = rawStatus(sendRawBytes(
+            port_, "POST /api/save HTTP/1.1\r\nHost: " + authority() + "\r\nContent-Le", false));
+        break;
+      case 2:  // a header line of 64 KiB
+        status = rawStatus(
+            sendRawBytes(port_,
+                         "GET /api/model HTTP/1.1\r\nConnection: close\r\nHost: " + authority() +
+                             "\r\nX: " + std::string(64 << 10, 'a') + "\r\n\r\n",
+                         false));  // refused after its headers: not whole
+        break;
+      case 3:
+        status =
+            failure(rawRequest(port_, "POST", "/api/transform",
+                               with(page(), "Host", "evil.example:" + port), R"({"scale": 3})"))
+                .first;
+        break;
+      case 4:
+        status = failure(rawRequest(port_, "POST", "/api/save",
+                                    with(page(), "Origin", "http://evil.example"), "{}"))
+                     .first;
+        break;
+      case 5:
+        status = failure(rawRequest(port_, "POST", "/api/edit",
+                                    with(page(), "Content-Type", "text/plain"), move(12, 0, 0, 5)))
+                     .first;
+        break;
+      case 6:
+        status = failure(rawRequest(port_, "POST", "/api/discard-recovery",
+                                    with(page(), kTokenHeader, std::to_string(next())), "{}"))
+                     .first;
+        break;
+      case 7:  // the right headers, a body over the limit
+        status = (i % 75 == 7) ? failure(rawRequest(port_, "POST", "/api/edit", page(), big)).first
+                               : failure(rawRequest(port_, "POST", "/api/edit", page(),
+                                                    big.substr(0, 1 + next() % 4096)))
+                                     .first;
+        break;
+      case 8:
+        status = failure(rawRequest(port_, "POST", "/api/edit", page(), "{\"op\": [")).first;
+        break;
+      case 9:
+        status = failure(rawRequest(port_, "POST", "/api/open", page(),
+                                    R"({"path": "../../etc/passwd"})"))
+                     .first;
+        break;
+      case 10:
+        status = failure(rawRequest(port_, "POST", "/api/edit", page(), move(99, 0, 0, 0))).first;
+        break;
+      case 11:
+        status = failure(rawRequest(port_, "GET", "/api/mesh?resolution=" + std::to_string(next()),
+                                    page()))
+                     .first;
+        break;
+      case 12:
+        status = failure(rawRequest(port_, "DELETE", "/api/model", page(), "{}")).first;
+        break;
+      case 13:
+        status = failure(rawRequest(port_, "GET", "/../../etc/passwd", page())).first;
+        break;
+      default:
+        status =
+            failure(rawRequest(port_, "POST", "/api/save-as", page(), R"({"path": "/tmp/x.json"})"))
+                .first;
+    }
+    ++statuses[status];
+    ASSERT_NE(status, 200) << "request " << i << " was served";
+    ASSERT_NE(status, -1) << "request " << i << ": the server did not answer";
+  }
+  EXPECT_EQ(snapshot(), before);
+  // Refused for each reason: Host, Origin, token (403), JSON (415), then the handlers' own.
+  EXPECT_GT(statuses[403], 0);
+  EXPECT_GT(statuses[415], 0);
+  EXPECT_GT(statuses[413], 0);
+  EXPECT_GT(statuses[400], 0);
+  // Still serving.
+  const auto r = post("/api/edit", move(0, 0, 0, 1));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(mesh().revision, before.session["revision"].get<std::uint32_t>() + 1);
+}
+
+// ---------------------------------------------------------------------------------------
 // `pdesurf studio`
 
 struct Child {
@@ -787,27 +1208,123 @@ TEST_F(StudioCliTest, MissingModelExitsOne) {
   EXPECT_NE(message.find("missing.json"), std::string::npos) << message;
 }
 
+/// The port and the token of the URL `pdesurf studio` printed on its first line (0 and ""
+/// when the line is not "pdesurf studio: http://127.0.0.1:PORT/?token=TOKEN (model: ...").
+std::pair<int, std::string> printedAddress(const std::string& line) {
+  static const std::regex url(
+      R"(^pdesurf studio: http://127\.0\.0\.1:(\d+)/\?token=([0-9a-f]{48}) \(model: )");
+  std::smatch m;
+  if (!std::regex_search(line, m, url)) return {0, ""};
+  return {std::stoi(m[1]), m[2]};
+}
+
+/// The status of GET /api/model from the studio on `port` with `token`.
+int modelStatus(int port, const std::string& token) {
+  httplib::Client client("127.0.0.1", port);
+  client.set_connection_timeout(5);
+  client.set_read_timeout(10);
+  const auto r = client.Get("/api/model", {{kTokenHeader, token}});
+  return r ? r->status : -1;
+}
+
 TEST_F(StudioCliTest, ServesUntilSigterm) {
   const std::string err = (outside_ / "err.txt").string();
   Child child = spawnCli({"studio", model_.string(), "--port", "0"}, err);
   const std::string line = readLine(child.out, std::chrono::seconds(10));
-  EXPECT_EQ(line.rfind("pdesurf studio: http://127.0.0.1:", 0), 0u) << line;
   EXPECT_NE(line.find("(model: " + model_.string() + ", root: " + root_.string() + ")"),
             std::string::npos)
       << line;
-  const auto colon = line.find(':', std::strlen("pdesurf studio: http:"));
-  const int port = colon == std::string::npos ? 0 : std::atoi(line.c_str() + colon + 1);
+  const auto [port, token] = printedAddress(line);
+  EXPECT_GT(port, 0) << line;
   if (port > 0) {
-    httplib::Client client("127.0.0.1", port);
-    client.set_connection_timeout(5);
-    client.set_read_timeout(10);
-    const auto r = client.Get("/api/model");
-    ASSERT_TRUE(r);
-    EXPECT_EQ(r->status, 200);
+    EXPECT_EQ(modelStatus(port, token), 200);
+    EXPECT_EQ(modelStatus(port, ""), 403);
   }
   ::kill(child.pid, SIGTERM);
   EXPECT_EQ(waitExit(child.pid, std::chrono::seconds(10)), 0) << readText(err);
   ::close(child.out);
+}
+
+TEST_F(StudioCliTest, NoTokenIsAnnouncedAsUnsafe) {
+  const std::string err = (outside_ / "err.txt").string();
+  Child child = spawnCli({"studio", model_.string(), "--port", "0", "--no-token"}, err);
+  const std::string line = readLine(child.out, std::chrono::seconds(10));
+  std::smatch m;
+  ASSERT_TRUE(
+      std::regex_search(line, m, std::regex(R"(^pdesurf studio: http://127\.0\.0\.1:(\d+)/ )")))
+      << line;
+  EXPECT_EQ(modelStatus(std::stoi(m[1]), ""), 200);
+  ::kill(child.pid, SIGTERM);
+  EXPECT_EQ(waitExit(child.pid, std::chrono::seconds(10)), 0);
+  ::close(child.out);
+  EXPECT_NE(readText(err).find("--no-token: UNSAFE"), std::string::npos) << readText(err);
+}
+
+TEST_F(StudioCliTest, KilledMidEditTheFileIsIntactAndTheJournalOffersTheEdits) {
+  // `pdesurf studio`, its checks on, receives a stream of edits (a drag) and is killed with
+  // SIGKILL among them: the model's file is byte for byte what it was, the journal is a
+  // whole model holding one of the positions sent, and the next launch (a new token; the
+  // old one refused) offers it back.
+  const std::string original = readText(model_);
+  const std::string err = (outside_ / "err.txt").string();
+  Child child = spawnCli({"studio", model_.string(), "--port", "0"}, err);
+  const auto [port, token] = printedAddress(readLine(child.out, std::chrono::seconds(10)));
+  ASSERT_GT(port, 0);
+  constexpr int kEdits = 100000;  // more than are answered before the kill
+  const auto z = [](int i) { return 0.001 * (i + 1); };
+  std::atomic<int> answered{0};
+  std::thread drag([&, port = port, token = token] {
+    httplib::Client client("127.0.0.1", port);
+    client.set_connection_timeout(2);
+    client.set_read_timeout(2);
+    client.set_default_headers({{kTokenHeader, token}});
+    for (int i = 0; i < kEdits; ++i) {
+      const auto r = client.Post("/api/edit", move(12, 1, 1, z(i), "drag"), "application/json");
+      if (!r || r->status != 200) return;  // killed
+      answered = i + 1;
+    }
+  });
+  // Killed once the journal holds some edits and more are in flight.
+  const fs::path journal = root_ / "grid.json.autosave";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while ((answered < 50 || !fs::exists(journal)) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ::kill(child.pid, SIGKILL);
+  drag.join();
+  EXPECT_EQ(waitExit(child.pid, std::chrono::seconds(10)), -2);  // killed by a signal
+  ::close(child.out);
+  ASSERT_GE(answered.load(), 50) << readText(err);
+
+  EXPECT_EQ(readText(model_), original);
+  ASSERT_TRUE(fs::exists(journal));
+  const auto saved = parseVertexFrameModel(readText(journal), "grid.json.autosave");
+  const double journaled = saved.vertices[12].z();
+  int sent = -1;
+  for (int i = 0; i <= answered && sent < 0; ++i)  // the edit in flight may be in it too
+    if (std::abs(journaled - z(i)) < 1e-12) sent = i;
+  EXPECT_GE(sent, 0) << "the journal holds z = " << journaled << ", never sent";
+
+  Child again = spawnCli({"studio", model_.string(), "--port", "0"}, err);
+  const auto [port2, token2] = printedAddress(readLine(again.out, std::chrono::seconds(10)));
+  ASSERT_GT(port2, 0);
+  EXPECT_NE(token2, token);
+  EXPECT_EQ(modelStatus(port2, token), 403);
+  httplib::Client client("127.0.0.1", port2);
+  client.set_connection_timeout(5);
+  client.set_read_timeout(10);
+  client.set_default_headers({{kTokenHeader, token2}});
+  const auto before = client.Get("/api/model");
+  ASSERT_TRUE(before && before->status == 200);
+  EXPECT_EQ(Json::parse(before->body)["recovery"], true);
+  const auto recovered = client.Post("/api/recover", "{}", "application/json");
+  ASSERT_TRUE(recovered && recovered->status == 200);
+  const auto after = client.Get("/api/model");
+  ASSERT_TRUE(after && after->status == 200);
+  EXPECT_DOUBLE_EQ(Json::parse(after->body)["model"]["vertices"][12][2].get<double>(), journaled);
+  ::kill(again.pid, SIGTERM);
+  EXPECT_EQ(waitExit(again.pid, std::chrono::seconds(10)), 0) << readText(err);
+  ::close(again.out);
+  EXPECT_EQ(readText(model_), original);
 }
 
 }  // namespace

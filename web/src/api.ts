@@ -1,5 +1,5 @@
 // The typed client of the studio server's API (apps/studio/README.md). Every request of
-// the front-end goes through this module.
+// the front-end goes through this module, and carries the studio's per-launch token.
 
 export type Vec3 = [number, number, number];
 export type Region = [number, number, number, number];
@@ -142,17 +142,60 @@ async function failure(res: Response): Promise<ApiError> {
   return new ApiError(res.status, message);
 }
 
-async function request<T>(method: 'GET' | 'POST', path: string, body?: unknown): Promise<T> {
-  let res: Response;
+/** The header that carries the token (apps/studio/README.md, "Security"). */
+export const TOKEN_HEADER = 'X-Pdesurf-Token';
+const TOKEN_KEY = 'pdesurf-token';
+
+/** The studio's per-launch token: taken from the page's address (`?token=`, as `pdesurf
+ * studio` prints it), which then loses it (history.replaceState: it stays out of the
+ * history, bookmarks and screenshots); kept in sessionStorage so that reloading this tab
+ * works. A token in the address replaces a kept one (a restarted studio has a new one). */
+function takeToken(): string {
+  const url = new URL(window.location.href);
+  const given = url.searchParams.get('token');
+  if (given === null) {
+    try {
+      return sessionStorage.getItem(TOKEN_KEY) ?? '';
+    } catch {
+      return '';
+    }
+  }
   try {
-    res = await fetch(path, {
+    sessionStorage.setItem(TOKEN_KEY, given);
+  } catch {
+    /* no storage: the token lasts as long as the page */
+  }
+  url.searchParams.delete('token');
+  history.replaceState(history.state, '', `${url.pathname}${url.search}${url.hash}`);
+  return given;
+}
+
+const token = takeToken();
+
+/** The headers of an API request: the token, and for a POST its JSON body's type (the
+ * server refuses a POST without it). */
+function headers(post: boolean): Record<string, string> {
+  const h: Record<string, string> = {};
+  if (token) h[TOKEN_HEADER] = token;
+  if (post) h['Content-Type'] = 'application/json';
+  return h;
+}
+
+/** fetch() of an API path with the token; a network failure becomes an ApiError. */
+async function send(path: string, method: 'GET' | 'POST', body?: unknown): Promise<Response> {
+  try {
+    return await fetch(path, {
       method,
-      headers: body === undefined ? undefined : { 'Content-Type': 'application/json' },
+      headers: headers(method === 'POST'),
       body: method === 'POST' ? JSON.stringify(body ?? {}) : undefined,
     });
   } catch (e) {
     throw new ApiError(0, `the studio server does not answer (${(e as Error).message})`);
   }
+}
+
+async function request<T>(method: 'GET' | 'POST', path: string, body?: unknown): Promise<T> {
+  const res = await send(path, method, body);
   if (!res.ok) throw await failure(res);
   return (await res.json()) as T;
 }
@@ -265,12 +308,7 @@ export const api = {
     if (options.solver) query.set('solver', options.solver);
     if (options.seed !== undefined) query.set('seed', String(options.seed));
     const q = query.toString();
-    let res: Response;
-    try {
-      res = await fetch(`/api/mesh${q ? `?${q}` : ''}`);
-    } catch (e) {
-      throw new ApiError(0, `the studio server does not answer (${(e as Error).message})`);
-    }
+    const res = await send(`/api/mesh${q ? `?${q}` : ''}`, 'GET');
     if (!res.ok) throw await failure(res);
     return parseMesh(await res.arrayBuffer(), res.headers);
   },

@@ -1,0 +1,110 @@
+// Rebuilding a mesh as a vertex-frame model: where the frames come from (layouts) and where
+// their vertices go (fitting). docs/rebuild.md.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pdesurf/mesh.hpp"
+#include "pdesurf/vertex_frames.hpp"
+
+namespace pdesurf {
+
+/// A mesh cannot serve as a layout (a face that is no quad, an edge of three faces, a
+/// mesh that is no disk); what() names the file, the face or the edge, and the problem.
+class LayoutError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// ---------------------------------------------------------------------------------------
+// Layouts: a vertex-frame model whose vertices are a first guess, ready to be fitted.
+
+/// A quad mesh as polygons: `faces[f]` lists the corners of face f (indices into points).
+struct PolygonMesh {
+  std::vector<Vec3> points;
+  std::vector<std::vector<std::uint32_t>> faces;
+};
+
+/// Reads the polygons of an OBJ, OFF or PLY file as they are (quads stay quads), through
+/// CGAL's polygon-soup readers. Throws LayoutError naming the file when it cannot be read.
+PolygonMesh readPolygonMesh(const std::string& path);
+
+/// One frame per quad: corners a b c d become P1 P3 P5 P7 (so the frame's normal
+/// S_u × S_v turns as the quad does), and each edge gets one midpoint vertex, shared by
+/// the two frames on it (P2, P4, P6, P8), placed at the edge's middle. The model lists the
+/// quads' used vertices first (in file order), then one midpoint per edge: V + E vertices.
+/// Throws LayoutError naming the face when one is not a quad (or repeats a corner) or an
+/// edge is shared by more than two faces. `source` names the mesh in messages.
+VertexFrameModel quadLayout(const PolygonMesh& quads, const std::string& source);
+
+/// A U × V grid of frames laid on a mesh with one boundary loop (a disk), through a
+/// parameterisation of the mesh onto the unit square (docs/rebuild.md).
+struct GridLayoutOptions {
+  std::uint32_t u = 8, v = 8;  ///< frames along each side of the square
+};
+
+/// Throws LayoutError (naming `source`) when the mesh is not a manifold disk.
+VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
+                            const std::string& source);
+
+// ---------------------------------------------------------------------------------------
+// Fitting: the vertex positions that put the surface on the mesh (a1, a2, forces fixed).
+
+/// The distances of one fit iteration, measured between the surface samples and the mesh
+/// both ways (the closest points the next step is built on), relative to the mesh's
+/// bounding-box diagonal.
+struct FitMeasure {
+  double rmsToMesh = 0.0, meanToMesh = 0.0, maxToMesh = 0.0;     ///< surface samples -> mesh
+  double rmsToModel = 0.0, meanToModel = 0.0, maxToModel = 0.0;  ///< mesh vertices -> surface
+  /// sqrt((rmsToMesh² + rmsToModel²) / 2): the quantity each step may not increase.
+  double rms() const;
+};
+
+struct FitIteration {
+  std::uint32_t iteration = 0;  ///< 0: the start
+  FitMeasure measure;
+  double step = 0.0;  ///< the fraction of the least-squares step taken (1: all of it)
+};
+
+struct FitOptions {
+  std::uint32_t maxIterations = 30;
+  /// Stops when an iteration lowers the RMS by less than this fraction of it.
+  double tolerance = 1e-3;
+  /// Surface samples per patch side (≥ 3), a grid including the patch's borders.
+  std::uint32_t samplesPerSide = 9;
+  /// Weight of the smoothness term: the mean squared umbrella Laplacian of the vertex
+  /// positions over the frame graph (each vertex against the mean of the vertices next to
+  /// it along frame sides), against the mean squared distances (docs/rebuild.md).
+  double smoothness = 1e-5;
+  /// How much a pair's distance along the tangent plane counts against its distance along
+  /// the normal, at the first iteration (1: the plain distance, point to point; small:
+  /// nearly point to plane, Gauss–Newton on the true distances, much faster near the
+  /// answer). It then adapts: a tenth after a full step, ten times after a shortened one.
+  /// Pairs whose foot is on a boundary count the plain distance.
+  double tangentialWeight = 0.1;
+  /// Halvings of a step the line search tries before it gives up.
+  std::uint32_t maxHalvings = 8;
+  /// Called with the start and after every accepted iteration (progress reports).
+  std::function<void(const FitIteration&)> onIteration;
+};
+
+struct FitResult {
+  VertexFrameModel model;
+  std::vector<FitIteration> iterations;  ///< [0] is the start
+  std::string stopReason;                ///< why the iterations stopped, in words
+};
+
+/// Moves the vertices of `start` (a layout) so that its surface lies on `target`: each
+/// iteration pairs surface samples with their closest points on the mesh and mesh vertices
+/// with their closest points on the surface, solves the linear least-squares problem in
+/// the vertex positions (with the strips' cubic coefficients as the global solver sets
+/// them), and takes the step, halved until the measured RMS does not increase.
+FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
+                          const FitOptions& options = {});
+
+}  // namespace pdesurf

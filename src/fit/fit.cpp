@@ -1,0 +1,499 @@
+// Fitting a vertex-frame model to a mesh: closest points both ways (CGAL AABB trees), a
+// sparse linear least-squares step in the vertex positions with the strips' cubic
+// coefficients tied to them exactly, and a line search on the measured RMS (docs/rebuild.md).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include "analysis/triangle_tree.hpp"
+#include "fit/linear_surface.hpp"
+#include "pdesurf/rebuild.hpp"
+
+namespace pdesurf {
+
+double FitMeasure::rms() const {
+  return std::sqrt(0.5 * (rmsToMesh * rmsToMesh + rmsToModel * rmsToModel));
+}
+
+namespace {
+
+using fit::LinearSurface;
+using fit::PointWeights;
+
+using detail::Point;
+using detail::toPoint;
+using detail::toVec;
+using detail::Tree;
+using detail::Triangle;
+using detail::Triangles;
+
+/// Below this RMS relative to the diagonal the fit is exact to rounding (float meshes
+/// carry 6e-8 relative): nothing is left to lower.
+constexpr double kExactRms = 1e-14;
+
+/// Gauss–Newton steps that move a mesh vertex's foot point from the sample triangle's
+/// estimate onto the patch: the estimate is within a sample cell, so a few suffice.
+constexpr int kProjectionSteps = 4;
+
+/// A foot point whose barycentric coordinate opposite a boundary edge is below this lies on
+/// the boundary: its pair counts the whole distance, not the normal part alone.
+constexpr double kOnBoundary = 1e-9;
+
+/// The tangential weight adapts as a trust region does: divided by 10 after a full step,
+/// multiplied by 10 (up to 1, plain distances) after a shortened one, never below this
+/// (the smoothness term keeps the system well posed down there).
+constexpr double kMinTangentialWeight = 1e-6;
+
+/// The barycentric coordinates of p (in the triangle's plane) in triangle a b c.
+Eigen::Vector3d barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double total = n.squaredNorm();
+  if (!(total > 0.0)) return {1.0, 0.0, 0.0};
+  const double lb = (p - a).cross(c - a).dot(n) / total;
+  const double lc = (b - a).cross(p - a).dot(n) / total;
+  return {1.0 - lb - lc, lb, lc};
+}
+
+/// The target mesh: its triangles with area in an AABB tree, its vertices as samples.
+struct Target {
+  Triangles triangles;
+  std::vector<Vec3> normals;  ///< unit normal per triangle
+  /// Per triangle, bit k: its edge opposite corner k is on the mesh's boundary.
+  std::vector<std::uint8_t> boundary;
+  Tree tree;
+  std::vector<Vec3> samples;    ///< the vertices that triangles with area use
+  std::vector<double> weights;  ///< a third of the area of their triangles, summing to 1
+  double diagonal = 0.0;
+
+  explicit Target(const Mesh& mesh) {
+    auto vertex = [&](std::uint32_t v) { return detail::meshVertex(mesh, v); };
+    std::vector<double> area(mesh.vertexCount(), 0.0);
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    double total = 0.0;
+    // Edges of one triangle with area are the boundary.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse;
+    std::vector<std::size_t> kept;
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const std::uint32_t* i = &mesh.indices[3 * t];
+      const Vec3 a = vertex(i[0]), b = vertex(i[1]), c = vertex(i[2]);
+      if (!((b - a).cross(c - a).norm() > 0.0)) continue;
+      kept.push_back(t);
+      for (int k = 0; k < 3; ++k) ++edgeUse[std::minmax(i[(k + 1) % 3], i[(k + 2) % 3])];
+    }
+    for (std::size_t t : kept) {
+      const std::uint32_t* i = &mesh.indices[3 * t];
+      const Vec3 a = vertex(i[0]), b = vertex(i[1]), c = vertex(i[2]);
+      const double at = 0.5 * (b - a).cross(c - a).norm();
+      std::uint8_t bits = 0;
+      for (int k = 0; k < 3; ++k)
+        if (edgeUse[std::minmax(i[(k + 1) % 3], i[(k + 2) % 3])] == 1) bits |= 1u << k;
+      boundary.push_back(bits);
+      triangles.emplace_back(toPoint(a), toPoint(b), toPoint(c));
+      normals.push_back((b - a).cross(c - a).normalized());
+      for (int k = 0; k < 3; ++k) {
+        area[i[k]] += at / 3.0;
+        lo = lo.cwiseMin(vertex(i[k]));
+        hi = hi.cwiseMax(vertex(i[k]));
+      }
+      total += at;
+    }
+    if (triangles.empty())
+      throw std::invalid_argument(
+          fmt::format("the mesh has no triangle with area ({} triangles)", mesh.triangleCount()));
+    for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v)
+      if (area[v] > 0.0) {
+        samples.push_back(vertex(v));
+        weights.push_back(area[v] / total);
+      }
+    diagonal = (hi - lo).norm();
+    tree.insert(triangles.cbegin(), triangles.cend());
+    tree.build();
+    tree.accelerate_distance_queries();
+  }
+};
+
+/// A closest-point pair: the surface point S(frame, u, v) should be at `target`.
+/// The squared distance counted is (S - target)ᵀ M (S - target) with
+/// M = n nᵀ + tangentialWeight (I - n nᵀ): along the normal n in full, along the tangent
+/// plane a little.
+struct Pair {
+  std::uint32_t frame = 0;
+  double u = 0.0, v = 0.0;
+  Vec3 target = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();  ///< unit, or zero where none is known (then M = I)
+  double weight = 0.0;
+};
+
+/// The pairs at one set of vertex positions and the distances they measure.
+struct Evaluation {
+  std::vector<Pair> pairs;
+  FitMeasure measure;
+};
+
+class Fitter {
+ public:
+  Fitter(const VertexFrameModel& start, const Mesh& target, const FitOptions& options)
+      : model_(start), linear_(start), target_(target), options_(options) {
+    const std::uint32_t g = options.samplesPerSide;
+    for (std::uint32_t j = 0; j < g; ++j)
+      for (std::uint32_t i = 0; i < g; ++i) {
+        // Trapezoid weights: a border sample stands for half a cell, a corner for a quarter.
+        const double wu = (i == 0 || i + 1 == g) ? 0.5 : 1.0;
+        const double wv = (j == 0 || j + 1 == g) ? 0.5 : 1.0;
+        grid_.push_back(
+            {static_cast<double>(i) / (g - 1), static_cast<double>(j) / (g - 1), wu * wv});
+      }
+    buildLaplacian();
+    tangentialWeight_ = options.tangentialWeight;
+  }
+
+  FitResult run() {
+    FitResult result;
+    Evaluation current = evaluate(model_.vertices);
+    report(result, {0, current.measure, 0.0});
+    for (std::uint32_t it = 1;; ++it) {
+      const double rms = current.measure.rms();
+      if (rms <= kExactRms) {
+        result.stopReason = "the surface lies on the mesh to rounding";
+        break;
+      }
+      if (it > options_.maxIterations) {
+        result.stopReason = fmt::format("reached the iteration limit ({})", options_.maxIterations);
+        break;
+      }
+      // Line search: the whole step, else halves of it, until the RMS does not increase;
+      // when none does, the tangential weight rises (towards plain distances) and the
+      // least squares is solved again.
+      double step = 1.0;
+      bool accepted = false;
+      std::vector<Vec3> candidate(model_.vertices.size());
+      for (;;) {
+        const std::vector<Vec3> solution = leastSquares(current.pairs);
+        for (std::uint32_t h = 0; h <= options_.maxHalvings; ++h) {
+          step = std::ldexp(1.0, -static_cast<int>(h));
+          for (std::size_t i = 0; i < solution.size(); ++i)
+            candidate[i] = model_.vertices[i] + step * (solution[i] - model_.vertices[i]);
+          Evaluation next = evaluate(candidate);
+          if (next.measure.rms() <= rms) {
+            model_.vertices = candidate;
+            current = std::move(next);
+            accepted = true;
+            break;
+          }
+        }
+        if (accepted || tangentialWeight_ >= 1.0) break;
+        tangentialWeight_ = std::min(1.0, 10.0 * tangentialWeight_);
+      }
+      if (!accepted) {
+        result.stopReason = fmt::format(
+            "no step along the least-squares solution lowers the RMS (tried down to 1/{})",
+            1u << options_.maxHalvings);
+        break;
+      }
+      report(result, {it, current.measure, step});
+      tangentialWeight_ = step == 1.0 ? std::max(kMinTangentialWeight, 0.1 * tangentialWeight_)
+                                      : std::min(1.0, 10.0 * tangentialWeight_);
+      const double decrease = (rms - current.measure.rms()) / rms;
+      if (decrease < options_.tolerance) {
+        result.stopReason = fmt::format(
+            "converged: the last iteration lowered the RMS by {:.3g}%, less than the tolerance "
+            "{:.3g}%",
+            100.0 * decrease, 100.0 * options_.tolerance);
+        break;
+      }
+    }
+    result.model = model_;
+    return result;
+  }
+
+ private:
+  struct GridPoint {
+    double u, v, weight;
+  };
+
+  void report(FitResult& result, const FitIteration& iteration) const {
+    result.iterations.push_back(iteration);
+    if (options_.onIteration) options_.onIteration(iteration);
+  }
+
+  /// The umbrella Laplacian over the frame graph: vertex j against the mean of the
+  /// vertices next to it along frame sides (P1-P2, P2-P3, ..., P8-P1).
+  void buildLaplacian() {
+    const std::size_t n = model_.vertices.size();
+    std::vector<std::vector<std::uint32_t>> next(n);
+    for (const Frame& f : model_.frames)
+      for (int i = 0; i < 8; ++i) {
+        const std::uint32_t a = f.vertices[i], b = f.vertices[(i + 1) % 8];
+        if (a == b) continue;
+        next[a].push_back(b);
+        next[b].push_back(a);
+      }
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (std::size_t j = 0; j < n; ++j) {
+      auto& nj = next[j];
+      std::sort(nj.begin(), nj.end());
+      nj.erase(std::unique(nj.begin(), nj.end()), nj.end());
+      if (nj.empty()) continue;
+      triplets.emplace_back(j, j, 1.0);
+      for (std::uint32_t k : nj) triplets.emplace_back(j, k, -1.0 / static_cast<double>(nj.size()));
+    }
+    laplacian_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    laplacian_.setFromTriplets(triplets.begin(), triplets.end());
+  }
+
+  /// Samples the surface of `vertices`, pairs the samples with the mesh and the mesh's
+  /// vertices with the surface, and measures the distances.
+  Evaluation evaluate(const std::vector<Vec3>& vertices) const {
+    VertexFrameModel model = model_;
+    model.vertices = vertices;
+    const VertexFrameSurface surface = solve(model, linear_.sharedTopology());
+    const std::uint32_t g = options_.samplesPerSide;
+    const auto nFrames = static_cast<std::uint32_t>(surface.patches.size());
+    Evaluation e;
+    e.pairs.reserve(std::size_t{nFrames} * grid_.size() + target_.samples.size());
+    const double diag = target_.diagonal > 0.0 ? target_.diagonal : 1.0;
+
+    // Surface samples -> mesh, weighted by the area they stand for.
+    std::vector<Vec3> positions(std::size_t{nFrames} * grid_.size());
+    double totalArea = 0.0;
+    double sum = 0.0, sumSquares = 0.0, max = 0.0;
+    std::vector<double> distances;
+    distances.reserve(positions.size());
+    auto hint =
+        target_.tree.closest_point_and_primitive(toPoint(surface.patches[0].position(0.0, 0.0)));
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (std::size_t s = 0; s < grid_.size(); ++s) {
+        const GridPoint& gp = grid_[s];
+        const SurfacePoint sp = surface.patches[k].evaluate(gp.u, gp.v);
+        positions[k * grid_.size() + s] = sp.p;
+        const Point q = toPoint(sp.p);
+        hint = target_.tree.closest_point_and_primitive(q, hint);
+        const auto t = static_cast<std::size_t>(hint.second - target_.triangles.cbegin());
+        const Vec3 foot = toVec(hint.first);
+        Pair pair{k, gp.u, gp.v, foot, target_.normals[t], gp.weight * sp.du.cross(sp.dv).norm()};
+        if (target_.boundary[t] != 0) {
+          const Triangle& tri = target_.triangles[t];
+          const Eigen::Vector3d l = barycentric(foot, toVec(tri[0]), toVec(tri[1]), toVec(tri[2]));
+          for (int c = 0; c < 3; ++c)
+            if ((target_.boundary[t] >> c & 1u) && l[c] < kOnBoundary) pair.normal.setZero();
+        }
+        totalArea += pair.weight;
+        distances.push_back((pair.target - sp.p).norm());
+        e.pairs.push_back(pair);
+      }
+    if (!(totalArea > 0.0)) throw std::invalid_argument("the model's surface has no area");
+    for (std::size_t i = 0; i < e.pairs.size(); ++i) {
+      e.pairs[i].weight /= totalArea;
+      sum += e.pairs[i].weight * distances[i];
+      sumSquares += e.pairs[i].weight * distances[i] * distances[i];
+      max = std::max(max, distances[i]);
+    }
+    e.measure.rmsToMesh = std::sqrt(sumSquares) / diag;
+    e.measure.meanToMesh = sum / diag;
+    e.measure.maxToMesh = max / diag;
+
+    // Mesh vertices -> surface: the closest point on the sample grids' triangles, then
+    // Gauss–Newton on that patch from there.
+    Triangles cells;
+    cells.reserve(std::size_t{nFrames} * 2 * (g - 1) * (g - 1));
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (std::uint32_t j = 0; j + 1 < g; ++j)
+        for (std::uint32_t i = 0; i + 1 < g; ++i) {
+          const Vec3* p = &positions[k * grid_.size()];
+          const Point a = toPoint(p[j * g + i]), b = toPoint(p[j * g + i + 1]);
+          const Point c = toPoint(p[(j + 1) * g + i + 1]), d = toPoint(p[(j + 1) * g + i]);
+          cells.emplace_back(a, b, c);
+          cells.emplace_back(a, c, d);
+        }
+    Tree onSurface(cells.cbegin(), cells.cend());
+    onSurface.accelerate_distance_queries();
+    sum = sumSquares = max = 0.0;
+    const double cell = 1.0 / (g - 1);
+    auto closest = onSurface.closest_point_and_primitive(toPoint(target_.samples[0]));
+    for (std::size_t m = 0; m < target_.samples.size(); ++m) {
+      const Vec3& x = target_.samples[m];
+      closest = onSurface.closest_point_and_primitive(toPoint(x), closest);
+      const auto t = static_cast<std::size_t>(closest.second - cells.cbegin());
+      const auto k = static_cast<std::uint32_t>(t / (2 * (g - 1) * (g - 1)));
+      const std::size_t local = t % (2 * (g - 1) * (g - 1));
+      const std::size_t i = (local / 2) % (g - 1), j = (local / 2) / (g - 1);
+      // The cell's (u, v) at the closest point, from its barycentric coordinates.
+      const Triangle& tri = cells[t];
+      const Vec3 a = toVec(tri[0]), b = toVec(tri[1]), c = toVec(tri[2]);
+      const Vec3 pc = toVec(closest.first);
+      const double total = (b - a).cross(c - a).norm();
+      double lb = 0.0, lc = 0.0;
+      if (total > 0.0) {
+        lb = (pc - a).cross(c - a).norm() / total;
+        lc = (b - a).cross(pc - a).norm() / total;
+      }
+      // Corners in (u, v): a = (i, j); first triangle b = (i+1, j), c = (i+1, j+1);
+      // second triangle b = (i+1, j+1), c = (i, j+1).
+      double du, dv;
+      if (local % 2 == 0)
+        du = lb + lc, dv = lc;
+      else
+        du = lb, dv = lb + lc;
+      double u = (static_cast<double>(i) + du) * cell, v = (static_cast<double>(j) + dv) * cell;
+      const VertexFramePatch& patch = surface.patches[k];
+      double best = (patch.position(u, v) - x).squaredNorm();
+      double bu = u, bv = v;
+      for (int step = 0; step < kProjectionSteps; ++step) {
+        const SurfacePoint sp = patch.evaluate(u, v);
+        const Vec3 r = sp.p - x;
+        Eigen::Matrix2d jtj;
+        jtj << sp.du.dot(sp.du), sp.du.dot(sp.dv), sp.du.dot(sp.dv), sp.dv.dot(sp.dv);
+        const Eigen::Vector2d jtr(sp.du.dot(r), sp.dv.dot(r));
+        if (!(jtj.determinant() > 0.0)) break;
+        const Eigen::Vector2d delta = jtj.ldlt().solve(-jtr);
+        u = std::clamp(u + delta.x(), 0.0, 1.0);
+        v = std::clamp(v + delta.y(), 0.0, 1.0);
+        const double d2 = (patch.position(u, v) - x).squaredNorm();
+        if (d2 < best) best = d2, bu = u, bv = v;
+      }
+      const double dist = std::sqrt(best);
+      const double w = target_.weights[m];
+      const SurfacePoint foot = patch.evaluate(bu, bv);
+      const Vec3 normal = foot.du.cross(foot.dv);
+      const double length = normal.norm();
+      // A foot on a side no other frame shares is on the surface's boundary.
+      const FrameTopology& topo = linear_.topology();
+      bool onBoundary = false;
+      const std::array<bool, 4> atSide = {bv == 0.0, bu == 1.0, bv == 1.0, bu == 0.0};
+      for (int side = 0; side < 4; ++side)
+        if (atSide[side] && topo.edges[topo.edgeOf[k][side]].sideCount == 1) onBoundary = true;
+      e.pairs.push_back(
+          {k, bu, bv, x, length > 0.0 && !onBoundary ? Vec3(normal / length) : Vec3::Zero(), w});
+      sum += w * dist;
+      sumSquares += w * dist * dist;
+      max = std::max(max, dist);
+    }
+    e.measure.rmsToModel = std::sqrt(sumSquares) / diag;
+    e.measure.meanToModel = sum / diag;
+    e.measure.maxToModel = max / diag;
+    return e;
+  }
+
+  /// The vertex positions that minimise the paired squared distances plus the smoothness
+  /// term, with each strip's cubic coefficient tied to the vertices as the global solver
+  /// ties it. Unknowns z = (x, X), interleaved by component: vertices, then strip values.
+  /// The objective is a sparse quadratic ½ zᵀKz - bᵀz, subject to X = L x. K is factorised
+  /// once (sparse Cholesky, local couplings only); the constraint is met through its
+  /// 3S × 3S Schur complement C K⁻¹ Cᵀ with C = [L, -I] (S strips), so the strips'
+  /// long-range coupling never fills the sparse factor.
+  std::vector<Vec3> leastSquares(const std::vector<Pair>& pairs) const {
+    const auto n = static_cast<Eigen::Index>(model_.vertices.size());
+    const auto strips = static_cast<Eigen::Index>(linear_.stripCount());
+    const Eigen::Index size = 3 * (n + strips);
+    const auto nFrames = model_.frames.size();
+    const auto& topo = linear_.topology();
+    // Unknown (slot i of frame k, component c) at 3 × (vertex or n + strip) + c.
+    auto unknown = [&](std::size_t k, int i) {
+      return i < 8 ? Eigen::Index{model_.frames[k].vertices[i]}
+                   : n + Eigen::Index{topo.strip[k][i - 8]};
+    };
+    // Per frame, the 30 × 30 normal block of its unknowns: Σ w (a aᵀ) ⊗ M.
+    using Block = Eigen::Matrix<double, 30, 30>;
+    std::vector<Block> blocks(nFrames, Block::Zero());
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
+    const double mu = tangentialWeight_;
+    for (const Pair& p : pairs) {
+      const PointWeights w = linear_.weights(p.frame, p.u, p.v);
+      Eigen::Matrix<double, 10, 1> a;
+      for (int i = 0; i < 8; ++i) a[i] = w.vertex[i];
+      a[8] = w.strip[0];
+      a[9] = w.strip[1];
+      const Eigen::Matrix3d m =
+          mu * Eigen::Matrix3d::Identity() + (1.0 - mu) * p.normal * p.normal.transpose();
+      const Eigen::Matrix<double, 10, 10> aa = p.weight * a * a.transpose();
+      Block& block = blocks[p.frame];
+      for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j) block.block<3, 3>(3 * i, 3 * j) += aa(i, j) * m;
+      const Vec3 mt = m * (p.target - w.offset);
+      for (int i = 0; i < 10; ++i) rhs.segment<3>(3 * unknown(p.frame, i)) += p.weight * a[i] * mt;
+    }
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(nFrames * 900);
+    std::vector<char> used(static_cast<std::size_t>(n), 0);
+    for (std::size_t k = 0; k < nFrames; ++k) {
+      for (std::uint32_t v : model_.frames[k].vertices) used[v] = 1;
+      for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j)
+          for (int c = 0; c < 3; ++c)
+            for (int d = 0; d < 3; ++d)
+              triplets.emplace_back(3 * unknown(k, i) + c, 3 * unknown(k, j) + d,
+                                    blocks[k](3 * i + c, 3 * j + d));
+    }
+    // Vertices no frame uses stay where they are.
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (!used[j])
+        for (int c = 0; c < 3; ++c) {
+          triplets.emplace_back(3 * j + c, 3 * j + c, 1.0);
+          rhs[3 * j + c] = model_.vertices[j][c];
+        }
+    // Smoothness: (λ / n) Σ_j |Lap x|², the Laplacian acting on each component alike.
+    if (options_.smoothness > 0.0) {
+      const Eigen::SparseMatrix<double> lap2 = laplacian_.transpose() * laplacian_;
+      const double scale = options_.smoothness / static_cast<double>(n);
+      for (Eigen::Index col = 0; col < lap2.outerSize(); ++col)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(lap2, col); it; ++it)
+          for (int c = 0; c < 3; ++c)
+            triplets.emplace_back(3 * it.row() + c, 3 * it.col() + c, scale * it.value());
+    }
+    Eigen::SparseMatrix<double> k(size, size);
+    k.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor(k);
+    if (factor.info() != Eigen::Success)
+      throw std::runtime_error(
+          "the fit's least-squares system is singular (a vertex no sample depends on)");
+    const Eigen::VectorXd z0 = factor.solve(rhs);
+
+    // Cᵀ = [Lᵀ; -I] per component and Y = K⁻¹ Cᵀ, then the Schur complement G = C Y.
+    Eigen::SparseMatrix<double> ct(size, 3 * strips);
+    {
+      std::vector<Eigen::Triplet<double>> t;
+      for (int c = 0; c < 3; ++c) {
+        const auto& rows = linear_.stripRows(c);
+        for (Eigen::Index s = 0; s < rows.outerSize(); ++s) {
+          for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, s); it; ++it)
+            t.emplace_back(3 * it.col() + c, 3 * s + c, it.value());
+          t.emplace_back(3 * (n + s) + c, 3 * s + c, -1.0);
+        }
+      }
+      ct.setFromTriplets(t.begin(), t.end());
+    }
+    const Eigen::MatrixXd y = factor.solve(Eigen::MatrixXd(ct));
+    const Eigen::MatrixXd g = Eigen::MatrixXd(ct.transpose() * y);
+    const Eigen::VectorXd z = z0 - y * Eigen::LDLT<Eigen::MatrixXd>(g).solve(ct.transpose() * z0);
+    std::vector<Vec3> out(static_cast<std::size_t>(n));
+    for (Eigen::Index j = 0; j < n; ++j) out[static_cast<std::size_t>(j)] = z.segment<3>(3 * j);
+    return out;
+  }
+
+  VertexFrameModel model_;
+  LinearSurface linear_;
+  Target target_;
+  FitOptions options_;
+  std::vector<GridPoint> grid_;
+  double tangentialWeight_ = 1.0;
+  Eigen::SparseMatrix<double> laplacian_;
+};
+
+}  // namespace
+
+FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
+                          const FitOptions& options) {
+  if (options.samplesPerSide < 3)
+    throw std::invalid_argument("fit: samplesPerSide must be at least 3");
+  Fitter fitter(start, target, options);
+  return fitter.run();
+}
+
+}  // namespace pdesurf

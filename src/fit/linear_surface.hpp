@@ -1,0 +1,60 @@
+// A vertex-frame surface as a linear function of the model's vertex positions: with a1, a2
+// and the forces fixed, S(k, u, v) = Σ φ_i(u,v) P_i + ψ(u) C3 + ψ(v) C6 + S_p(u, v), and the
+// global solver's strip values C3, C6 are themselves linear in the vertices (docs/rebuild.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "pdesurf/vertex_frames.hpp"
+
+namespace pdesurf::fit {
+
+/// ψ(t) = t³ - 3t²/2 + t/2: how a strip's cubic coefficient enters a patch along its
+/// direction (the closed form's C1, C2 and C3 terms together); 0 at t = 0, ½ and 1.
+inline double cubicShape(double t) { return t * (t - 0.5) * (t - 1.0); }
+
+/// One surface point as weights on unknowns: the frame's 8 vertices and its two strips.
+struct PointWeights {
+  std::array<double, 8> vertex{};  ///< φ_i(u, v) for the frame's P1..P8
+  std::array<double, 2> strip{};   ///< parity × ψ(u), parity × ψ(v)
+  Vec3 offset = Vec3::Zero();      ///< the forces' particular solution S_p(u, v)
+};
+
+class LinearSurface {
+ public:
+  /// Built for the model's frames, a1, a2 and forces; the vertex positions may change.
+  explicit LinearSurface(const VertexFrameModel& model);
+
+  const FrameTopology& topology() const { return *topology_; }
+  std::shared_ptr<const FrameTopology> sharedTopology() const { return topology_; }
+  std::uint32_t stripCount() const { return topology_->stripCount; }
+
+  /// The weights of S(frame, u, v).
+  PointWeights weights(std::uint32_t frame, double u, double v) const;
+
+  /// The global solver's strip values as rows on the vertices: component c of strip s is
+  /// Σ_j stripRows(c)(s, j) x_j[c] (a zero row for a pinned or undetermined strip).
+  const Eigen::SparseMatrix<double, Eigen::RowMajor>& stripRows(int component) const {
+    return stripRows_[component];
+  }
+
+  /// S(frame, u, v) for the given vertices (the strip values computed from them).
+  Vec3 position(const std::vector<Vec3>& vertices, std::uint32_t frame, double u, double v) const;
+  /// The strip values of the given vertices, per strip, per component.
+  std::vector<Vec3> stripValues(const std::vector<Vec3>& vertices) const;
+
+  const Frame& frame(std::uint32_t k) const { return frames_[k]; }
+
+ private:
+  std::vector<Frame> frames_;
+  std::vector<std::vector<ForceTerm>> forces_;
+  std::shared_ptr<const FrameTopology> topology_;
+  std::array<Eigen::SparseMatrix<double, Eigen::RowMajor>, 3> stripRows_;
+};
+
+}  // namespace pdesurf::fit

@@ -1,0 +1,138 @@
+// Tests of `pdesurf rebuild --as vertex-frames`: the real binary, the model file it writes,
+// its distances, and its errors (exit status, message, no file left behind).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model_io.hpp"
+#include "support/cgal_data.hpp"
+#include "support/cli_run.hpp"
+#include "support/models.hpp"
+
+namespace pdesurf {
+namespace {
+
+using Json = nlohmann::json;
+using testing::CliRun;
+
+bool contains(const std::string& text, const std::string& what) {
+  return text.find(what) != std::string::npos;
+}
+
+class CliRebuild : public ::testing::Test {
+ protected:
+  CliRun run(const std::string& args) { return testing::runCli(work_, capture_, args); }
+  std::string path(const std::string& name) const { return work_.file(name); }
+  void put(const std::string& name, const std::string& text) {
+    std::ofstream(path(name), std::ios::binary) << text;
+  }
+
+  /// A bumpy torus of 3 × 4 frames as the target mesh (torus.obj) and, as the layout, the
+  /// quads of its frame corners moved a little (cage.obj).
+  void writeTorusAndCage() {
+    std::mt19937 rng(5);
+    testing::LatticeOptions o;
+    o.rows = 3;
+    o.cols = 4;
+    o.closedU = o.closedV = true;
+    o.noise = 0.1;
+    const VertexFrameModel truth = testing::latticeModel(o, rng);
+    writeMesh(tessellate(solve(truth), {17}), path("torus.obj"));
+    std::normal_distribution<double> noise(0.0, 0.05);
+    std::string obj;
+    for (const Vec3& p : truth.vertices)
+      obj +=
+          fmt::format("v {} {} {}\n", p.x() + noise(rng), p.y() + noise(rng), p.z() + noise(rng));
+    for (const Frame& f : truth.frames)
+      obj += fmt::format("f {} {} {} {}\n", f.vertices[0] + 1, f.vertices[2] + 1, f.vertices[4] + 1,
+                         f.vertices[6] + 1);
+    put("cage.obj", obj);
+  }
+
+  testing::TempDir work_, capture_;
+};
+
+/// The relative RMS of "iteration N ...: RMS x%" in the output, for iteration N.
+double iterationRms(const std::string& out, int iteration) {
+  const std::string key = fmt::format("iteration {:>3} (", iteration);
+  const auto at = out.find(key);
+  if (at == std::string::npos) return -1.0;
+  const auto rms = out.find("RMS ", at);
+  return std::stod(out.substr(rms + 4)) / 100.0;
+}
+
+TEST_F(CliRebuild, AQuadLayoutFittedToATorusWritesAModelThatCompareConfirms) {
+  writeTorusAndCage();
+  const CliRun r = run("rebuild torus.obj --as vertex-frames --layout cage.obj -o torus.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const VertexFrameModel model = loadVertexFrameModel(path("torus.json"));
+  EXPECT_EQ(model.frames.size(), 12u);
+  EXPECT_EQ(model.vertices.size(), 12u + 24u);  // V + E of the cage
+  const double start = iterationRms(r.out, 0), end = iterationRms(r.out, 1);
+  ASSERT_GT(start, 0.0) << r.out;
+  ASSERT_GT(end, 0.0) << r.out;
+  EXPECT_LT(end, start) << r.out;
+  EXPECT_TRUE(contains(r.out, "storage ")) << r.out;
+  // What rebuild printed, compare measures again from the file.
+  const CliRun c = run("compare torus.json torus.obj --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  const Json d = Json::parse(c.out);
+  const double rms = d["model_to_mesh"]["rms_relative"].get<double>();
+  EXPECT_LT(rms, 0.1 * start) << r.out;
+  EXPECT_TRUE(contains(r.out, fmt::format("RMS {:.6g} (", d["model_to_mesh"]["rms"].get<double>())))
+      << r.out;
+}
+
+TEST_F(CliRebuild, AGridOnADiskMeshMakesUTimesVFrames) {
+  const std::string mesh = testing::cgalData("three_peaks.off");
+  const CliRun r = run("rebuild " + testing::shellQuote(mesh) +
+                       " --as vertex-frames --grid 4 3 --iterations 3 -o peaks.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const VertexFrameModel model = loadVertexFrameModel(path("peaks.json"));
+  EXPECT_EQ(model.frames.size(), 12u);
+  EXPECT_EQ(model.vertices.size(), 9u * 7u);
+  EXPECT_LE(iterationRms(r.out, 1), iterationRms(r.out, 0)) << r.out;
+  // Nothing else is printed or written (CGAL's iterative authalic parameterizer would
+  // print its progress and leave last_solve.off behind).
+  EXPECT_EQ(r.out.rfind("iteration   0 (layout)", 0), 0u) << r.out;
+  EXPECT_EQ(work_.entries(), std::vector<std::string>{"peaks.json"});
+}
+
+TEST_F(CliRebuild, BadLayoutsAndMeshesExitOneNamingTheProblemAndWriteNothing) {
+  writeTorusAndCage();
+  put("tri.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 3 4\n");
+  CliRun r = run("rebuild torus.obj --as vertex-frames --layout tri.obj -o out.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(contains(r.err, "tri.obj: face 1 has 3 corners")) << r.err;
+  r = run("rebuild " + testing::shellQuote(testing::cgalData("cube.off")) +
+          " --as vertex-frames --grid 2 2 -o out.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(contains(r.err, "0 boundary loops")) << r.err;
+  r = run("rebuild missing.obj --as vertex-frames --layout cage.obj -o out.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(contains(r.err, "missing.obj")) << r.err;
+  EXPECT_FALSE(std::ifstream(path("out.json")).good());
+}
+
+TEST_F(CliRebuild, LayoutAndGridTogetherOrNeitherIsAUsageError) {
+  writeTorusAndCage();
+  CliRun r = run("rebuild torus.obj --as vertex-frames -o out.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "give one of --layout QUADS and --grid U V")) << r.err;
+  r = run("rebuild torus.obj --as vertex-frames --layout cage.obj --grid 2 2 -o out.json");
+  EXPECT_EQ(r.code, 2);
+  r = run("rebuild torus.obj --as nurbs --layout cage.obj -o out.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_FALSE(std::ifstream(path("out.json")).good());
+}
+
+}  // namespace
+}  // namespace pdesurf

@@ -1,0 +1,134 @@
+// Fitting: the linear map agrees with the solver; a surface a model represents is recovered;
+// the RMS never rises; a cage fitted to a real mesh comes closer to it.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fit/linear_surface.hpp"
+#include "pdesurf/analysis.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/rebuild.hpp"
+#include "support/cgal_data.hpp"
+#include "support/models.hpp"
+
+namespace pdesurf {
+namespace {
+
+/// The linear map and the solver form the same sums in different orders: a few ulps of
+/// the coordinates (≈ 3 here) per term, far below 1e-12.
+constexpr double kLinearMapTolerance = 1e-12;
+
+/// The recovered surface, relative to the bounding-box diagonal. The target mesh is stored
+/// in float (6e-8 relative per coordinate), so that is the level the fit can reach; the
+/// bound leaves a factor of 20 for how the rounding propagates through the least squares.
+constexpr double kRecoveryTolerance = 1e-6;
+
+/// A random open model: a bumpy sheet of frames in random orientations with random a1, a2.
+VertexFrameModel randomModel(std::mt19937& rng, int rows, int cols, bool forces) {
+  testing::LatticeOptions o;
+  o.rows = rows;
+  o.cols = cols;
+  o.randomOrientation = true;
+  o.noise = 0.3;
+  o.randomParameters = true;
+  VertexFrameModel m = testing::latticeModel(o, rng);
+  if (forces) {
+    std::uniform_real_distribution<double> d(-2.0, 2.0);
+    m.frames[0].forces.push_back({Vec3(d(rng), d(rng), d(rng)), {0.2, 0.7, 0.1, 0.6}});
+    m.forces.push_back({Vec3(d(rng), d(rng), d(rng)), {1, 2}});
+  }
+  return m;
+}
+
+TEST(LinearSurface, EvaluatesAsTheGlobalSolverDoes) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    SCOPED_TRACE(trial);
+    const VertexFrameModel model = randomModel(rng, 2 + trial % 3, 3, trial % 2 == 0);
+    const fit::LinearSurface linear(model);
+    const VertexFrameSurface surface = solve(model);
+    for (std::uint32_t k = 0; k < model.frames.size(); ++k)
+      for (int s = 0; s < 10; ++s) {
+        const double u = unit(rng), v = unit(rng);
+        EXPECT_LT(
+            (linear.position(model.vertices, k, u, v) - surface.patches[k].position(u, v)).norm(),
+            kLinearMapTolerance);
+      }
+  }
+}
+
+/// Each accepted iteration's RMS is no larger than the one before.
+void expectRmsNeverRises(const FitResult& fit) {
+  for (std::size_t i = 1; i < fit.iterations.size(); ++i)
+    EXPECT_LE(fit.iterations[i].measure.rms(), fit.iterations[i - 1].measure.rms())
+        << "iteration " << i;
+}
+
+TEST(Fit, RecoversASurfaceThatARandomModelMakes) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (int trial = 0; trial < 3; ++trial) {
+    SCOPED_TRACE(trial);
+    // A random closed model (a bumpy torus of 4 × 6 frames in random orientations, random
+    // a1 and a2 per frame, forces in one trial).
+    testing::LatticeOptions o;
+    o.rows = 4;
+    o.cols = 6;
+    o.closedU = o.closedV = true;
+    o.randomOrientation = true;
+    o.noise = 0.1;
+    o.randomParameters = trial > 0;
+    VertexFrameModel truth = testing::latticeModel(o, rng);
+    if (trial == 2) truth.forces.push_back({Vec3(0.5, -0.3, 0.8), {1, 5, 9}});
+    // Tessellated at 33 per side: the fit's 9 samples per side are among its vertices.
+    const Mesh target = tessellate(solve(truth), {33});
+    const double diagonal = surfaceBounds(solve(truth)).diagonal();
+    VertexFrameModel start = truth;
+    for (Vec3& x : start.vertices) x += diagonal * Vec3(noise(rng), noise(rng), noise(rng));
+    FitOptions options;
+    options.tolerance = 0.0;   // to the end: until no step lowers the RMS
+    options.smoothness = 0.0;  // the smoothness term would hold the surface off by ~1e-6
+    options.maxIterations = 100;
+    const FitResult fit = fitVertexFrames(start, target, options);
+    expectRmsNeverRises(fit);
+    const FitMeasure& first = fit.iterations.front().measure;
+    const FitMeasure& last = fit.iterations.back().measure;
+    EXPECT_GT(first.rms(), 1e3 * kRecoveryTolerance);
+    EXPECT_LT(last.rms(), kRecoveryTolerance) << fit.stopReason;
+    EXPECT_LT(std::max(last.maxToMesh, last.maxToModel), 10 * kRecoveryTolerance) << fit.stopReason;
+  }
+}
+
+TEST(Fit, BringsACubeCageCloserToARealMesh) {
+  const std::string meshPath = testing::cgalData("ellipsoid.off");
+  const Mesh target = readMesh(meshPath);
+  Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+  for (std::size_t v = 0; v < target.vertexCount(); ++v) {
+    const Vec3 p(target.positions[3 * v], target.positions[3 * v + 1], target.positions[3 * v + 2]);
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  // CGAL's cube (corners at ±1) scaled onto the mesh's bounding box.
+  PolygonMesh cage = readPolygonMesh(testing::cgalData("cube_quad.off"));
+  for (Vec3& p : cage.points)
+    p = 0.5 * (lo + hi) + 0.5 * (hi - lo).cwiseProduct(p.cwiseMax(-1.0).cwiseMin(1.0));
+  const VertexFrameModel layout = quadLayout(cage, "cube_quad.off");
+  const FitResult fit = fitVertexFrames(layout, target);
+  expectRmsNeverRises(fit);
+  ASSERT_GE(fit.iterations.size(), 2u) << fit.stopReason;
+  // Lower, and by more than the tolerance: the fit did real work.
+  EXPECT_LT(fit.iterations.back().measure.rms(), 0.5 * fit.iterations.front().measure.rms())
+      << fit.stopReason;
+}
+
+TEST(Fit, AMeshWithoutAreaIsRejected) {
+  std::mt19937 rng(3);
+  const VertexFrameModel model = randomModel(rng, 1, 1, false);
+  Mesh flat;
+  flat.positions = {0, 0, 0, 1, 0, 0, 2, 0, 0};
+  flat.indices = {0, 1, 2};
+  EXPECT_THROW(fitVertexFrames(model, flat), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pdesurf
