@@ -1,6 +1,7 @@
 // Benchmarks of the mesh tools: slicing CGAL's elephant (libcgal-demo, through
 // scripts/cgal_data) and mesh-to-mesh distances with CGAL AABB trees.
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 #include <stdio.h>
 
@@ -58,32 +59,51 @@ Mesh sphere(int n, double r) {
 
 /// The elephant (5558 triangles) cut by 100 planes along z.
 void BM_SliceElephant(benchmark::State& state) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(state.range(1)));
   const Mesh& mesh = elephant();
   SliceOptions options;
   options.count = static_cast<std::uint32_t>(state.range(0));
   for (auto _ : state) benchmark::DoNotOptimize(sliceMesh(mesh, options));
   state.counters["planes"] = static_cast<double>(options.count);
 }
-BENCHMARK(BM_SliceElephant)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+// Args: planes, threads at most (oneTBB). Wall-clock time: the work runs on several threads.
+BENCHMARK(BM_SliceElephant)
+    ->Args({10, 1})
+    ->Args({100, 1})
+    ->Args({100, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// The elephant against a copy scaled by 1.01, both ways, default sampling (100000 face
 /// samples per mesh).
 void BM_DistanceElephant(benchmark::State& state) {
+  DistanceOptions options;
+  options.threads = static_cast<unsigned>(state.range(0));
   const Mesh& a = elephant();
   Mesh b = a;
   for (float& x : b.positions) x *= 1.01f;
-  for (auto _ : state) benchmark::DoNotOptimize(meshDistance(a, b));
+  for (auto _ : state) benchmark::DoNotOptimize(meshDistance(a, b, options));
 }
-BENCHMARK(BM_DistanceElephant)->Unit(benchmark::kMillisecond);
+// Arg: threads. Wall-clock time, as below.
+BENCHMARK(BM_DistanceElephant)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
-/// Two spheres of about 2 n² triangles each, both ways, default sampling.
+/// Two spheres of about 2 n² triangles each, both ways, default sampling. Args: n, threads.
 void BM_DistanceSpheres(benchmark::State& state) {
+  DistanceOptions options;
+  options.threads = static_cast<unsigned>(state.range(1));
   const int n = static_cast<int>(state.range(0));
   const Mesh a = sphere(n, 1.0), b = sphere(n + 1, 1.05);
-  for (auto _ : state) benchmark::DoNotOptimize(meshDistance(a, b));
+  for (auto _ : state) benchmark::DoNotOptimize(meshDistance(a, b, options));
   state.counters["triangles"] = static_cast<double>(a.triangleCount());
 }
-BENCHMARK(BM_DistanceSpheres)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DistanceSpheres)
+    ->Args({64, 1})
+    ->Args({64, 2})
+    ->Args({256, 1})
+    ->Args({256, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// The elephant's standing leg (docs/rebuild.md) rebuilt from K sections of 64 points with
 /// 8 modes: slicing, preparing, fitting and solving the global chain, what `pdesurf rebuild`

@@ -1,6 +1,9 @@
 // Benchmarks of the vertex-frame engine: solving large models and tessellating them.
-// Results and the command that produced them: docs/performance.md.
+// Results and the command that produced them: docs/performance.md. Tessellation runs on
+// every core (oneTBB), so its rows are timed by the wall clock (UseRealTime), and so are
+// their single-threaded baselines.
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <random>
@@ -67,16 +70,28 @@ const VertexFrameSurface& tessellationSheet() {
   return s;
 }
 
-/// Tessellation with normals into a mesh whose buffers are reused; items = vertices.
-void runTessellate(benchmark::State& state, const VertexFrameSurface& s, std::uint32_t res) {
-  Mesh mesh;
+/// Tessellation with normals; items = vertices. Fresh: a new Mesh per iteration, allocated,
+/// written and freed, as `pdesurf build` pays it; otherwise into a mesh whose buffers are
+/// reused (the arithmetic and the stores alone).
+void runTessellate(benchmark::State& state, const VertexFrameSurface& s, std::uint32_t res,
+                   bool fresh) {
+  Mesh reused;
+  std::size_t vertices = 0;
   for (auto _ : state) {
-    tessellate(s, {res}, mesh);
-    benchmark::DoNotOptimize(mesh.positions.data());
-    benchmark::ClobberMemory();
+    if (fresh) {
+      const Mesh mesh = tessellate(s, {res});
+      benchmark::DoNotOptimize(mesh.positions.data());
+      benchmark::ClobberMemory();
+      vertices = mesh.vertexCount();
+    } else {
+      tessellate(s, {res}, reused);
+      benchmark::DoNotOptimize(reused.positions.data());
+      benchmark::ClobberMemory();
+      vertices = reused.vertexCount();
+    }
   }
-  state.counters["vertices"] = static_cast<double>(mesh.vertexCount());
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(mesh.vertexCount()));
+  state.counters["vertices"] = static_cast<double>(vertices);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(vertices));
 }
 
 /// Re-tessellation on an unchanged topology and resolution (a studio drag): a Tessellator
@@ -102,36 +117,76 @@ void runRetessellate(benchmark::State& state, int side, std::uint32_t res) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
 }
 
-/// The 1,024-frame sheet, tessellated afresh at N = Arg.
+/// The 1,024-frame sheet, tessellated afresh at N = Arg into a new Mesh: allocation, page
+/// faults and freeing included.
 void BM_Tessellate(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)));
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), true);
 }
-BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+/// Fresh tessellation at N = Arg 0 on at most Arg 1 threads (oneTBB): the scaling table.
+void BM_TessellateThreads(benchmark::State& state) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(state.range(1)));
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), true);
+}
+BENCHMARK(BM_TessellateThreads)
+    ->Args({33, 1})
+    ->Args({33, 2})
+    ->Args({65, 1})
+    ->Args({65, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+/// The same into a Mesh whose buffers are reused (already mapped): no allocation, no faults.
+void BM_TessellateReused(benchmark::State& state) {
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), false);
+}
+BENCHMARK(BM_TessellateReused)
+    ->Arg(17)
+    ->Arg(33)
+    ->Arg(65)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// The 1,024-frame sheet re-tessellated at N = Arg.
 void BM_Retessellate(benchmark::State& state) {
   runRetessellate(state, 32, static_cast<std::uint32_t>(state.range(0)));
 }
-BENCHMARK(BM_Retessellate)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Retessellate)->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(benchmark::kMillisecond);
 
-/// The computation alone: a sheet small enough (9 frames at N = 33, 4 at N = 65: under 1 MB
-/// of mesh) that its mesh stays in this core's L2 between calls, so that no time goes to
+/// The computation alone, on one thread: a sheet small enough (9 frames at N = 33, 4 at N = 65:
+/// under 1 MB of mesh) that its mesh stays in this core's L2 between calls, so that no time goes to
 /// memory traffic. Args: frames per side, N. Items = vertices.
 void BM_TessellateInCache(benchmark::State& state) {
+  const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   const VertexFrameSurface s = solve(sheet(static_cast<int>(state.range(0))));
-  runTessellate(state, s, static_cast<std::uint32_t>(state.range(1)));
+  runTessellate(state, s, static_cast<std::uint32_t>(state.range(1)), false);
 }
-BENCHMARK(BM_TessellateInCache)->Args({3, 33})->Args({2, 65})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TessellateInCache)
+    ->Args({3, 33})
+    ->Args({2, 65})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 
 /// Re-tessellation of that small sheet.
 void BM_RetessellateInCache(benchmark::State& state) {
+  const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   runRetessellate(state, static_cast<int>(state.range(0)),
                   static_cast<std::uint32_t>(state.range(1)));
 }
-BENCHMARK(BM_RetessellateInCache)->Args({3, 33})->Args({2, 65})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RetessellateInCache)
+    ->Args({3, 33})
+    ->Args({2, 65})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 
 /// The baselines' writing: nv vertices (position and normal, 6 floats each) and, when
-/// `triangles`, the mesh's triangle indices and patch ids, into its existing buffers.
+/// `triangles`, the mesh's triangle indices and patch ids, into its existing buffers. Compiled
+/// for each SIMD level and run at the widest the CPU has, as the tessellation's kernels are.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
 void writeMeshData(Mesh& mesh, std::size_t nv, bool triangles) {
   float* p = mesh.positions.data();
   float* n = mesh.normals.data();
@@ -169,12 +224,22 @@ void writeBaseline(benchmark::State& state, bool triangles) {
 /// Baseline for a fresh tessellation: write the same number of vertices (position and
 /// normal, 6 floats each), the same triangle indices and the same patch ids, computing nothing.
 void BM_WriteVerticesBaseline(benchmark::State& state) { writeBaseline(state, true); }
-BENCHMARK(BM_WriteVerticesBaseline)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteVerticesBaseline)
+    ->Arg(17)
+    ->Arg(33)
+    ->Arg(65)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// The baseline in its own words, "writing the same number of vertices": positions
 /// and normals only (6 floats per vertex), the comparison for re-tessellation.
 void BM_WriteVertexDataBaseline(benchmark::State& state) { writeBaseline(state, false); }
-BENCHMARK(BM_WriteVertexDataBaseline)->Arg(17)->Arg(33)->Arg(65)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteVertexDataBaseline)
+    ->Arg(17)
+    ->Arg(33)
+    ->Arg(65)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -508,6 +509,14 @@ int main(int argc, char** argv) {
       "Exit status: 0 success, 1 invalid input file, 2 usage error."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "pdesurf 0.1.0");
+  // Before or after the command's name: `pdesurf --threads 2 build …` or `pdesurf build … --threads
+  // 2`.
+  app.fallthrough();
+  unsigned threads = 0;
+  app.add_option("--threads", threads,
+                 "threads for tessellation, evaluation, compare and slice (default 0: all cores); "
+                 "the output is the same for any number")
+      ->check(CLI::Range(0u, 4096u));
 
   std::string modelPath, outPath;
   std::uint32_t resolution = 17, grid = 0;
@@ -602,6 +611,10 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitUsage;
   }
+
+  // Every parallel loop (oneTBB) runs on at most this many threads.
+  std::optional<tbb::global_control> threadLimit;
+  if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
   try {
     if (*build) return runBuild(modelPath, outPath, resolution, solveArgs, quiet);

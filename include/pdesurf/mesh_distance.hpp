@@ -21,8 +21,9 @@ using Vec3 = Eigen::Vector3d;
 struct DistanceOptions {
   std::size_t samples = 100000;             ///< face samples wanted on each mesh
   std::uint32_t minSamplesPerTriangle = 1;  ///< at least this many on every triangle
-  /// Threads that query in parallel; 0: one per hardware thread. The result is the same
-  /// for any count (fixed blocks of samples, merged in order).
+  /// Threads that query in parallel; 0: as many as oneTBB allows (every core unless the
+  /// program limits it, as the CLI's --threads does). The result is the same for any count
+  /// (fixed blocks of samples, merged in order).
   unsigned threads = 0;
 };
 

@@ -3,15 +3,15 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <Eigen/Geometry>
 
 #include "analysis/triangle_tree.hpp"
@@ -160,9 +160,8 @@ OneWayDistance oneWay(const Mesh& a, const AreaTriangles& at, const ClosestPoint
   const std::size_t blocks =
       vertexBlocks + (at.corners.size() + kTriangleBlock - 1) / kTriangleBlock;
   std::vector<Tally> tallies(blocks);
-  std::atomic<std::size_t> next{0};
   auto work = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < blocks;) {
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t i) {
       if (i < vertexBlocks) {
         vertexBlock(i * kVertexBlock, std::min(vertices.size(), (i + 1) * kVertexBlock),
                     tallies[i]);
@@ -171,15 +170,12 @@ OneWayDistance oneWay(const Mesh& a, const AreaTriangles& at, const ClosestPoint
         triangleBlock(j * kTriangleBlock, std::min(at.corners.size(), (j + 1) * kTriangleBlock),
                       tallies[i]);
       }
-    }
+    });
   };
-  const std::size_t threads = std::min<std::size_t>(
-      blocks,
-      options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> pool;
-  for (std::size_t i = 1; i < threads; ++i) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
+  if (options.threads > 0)
+    tbb::task_arena(static_cast<int>(options.threads)).execute(work);
+  else
+    work();  // as many threads as oneTBB allows (all cores, or the CLI's --threads)
 
   Tally total;
   for (const Tally& tally : tallies) total.merge(tally);

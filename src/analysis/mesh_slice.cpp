@@ -12,6 +12,8 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace pdesurf {
 namespace {
@@ -251,16 +253,22 @@ std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options
   const std::vector<double> planes = slicePlanes(options, lo, hi);
   const std::pair<int, int> uw = planeAxes(options.axis);
 
-  std::vector<MeshSection> sections;
-  sections.reserve(planes.size());
-  std::vector<std::uint8_t> above(mesh.vertexCount());
-  for (std::uint32_t i = 0; i < planes.size(); ++i) {
+  // Each plane's closed loops, planes in parallel (a plane's cut depends on nothing else);
+  // then, in plane order, the first failure is reported and one loop kept per plane (as
+  // tracking needs the previous plane's choice): the same result for any thread count.
+  struct PlaneLoops {
+    std::vector<MeshSection> candidates;
+    std::string error;  ///< why the plane has no loop, if it has none
+  };
+  auto cutPlane = [&](std::uint32_t i, std::vector<std::uint8_t>& above) {
     const double c = planes[i];
+    PlaneLoops result;
     auto fail = [&](const std::string& what) {
-      throw MeshSliceError(fmt::format("plane {} at {}={} {} ({})", i, name, c, what,
-                                       extentText(options.axis, lo, hi)));
+      result.error = fmt::format("plane {} at {}={} {} ({})", i, name, c, what,
+                                 extentText(options.axis, lo, hi));
+      return result;
     };
-    if (c < lo || c > hi) fail("does not meet the mesh");
+    if (c < lo || c > hi) return fail("does not meet the mesh");
     // Symbolic perturbation: vertices on the plane count as above, except at the lowest
     // coordinate, where nothing would be below them.
     const bool onPlaneAbove = c != lo;
@@ -269,11 +277,12 @@ std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options
       above[v] = x > c || (x == c && onPlaneAbove);
     }
     const PlaneCut cut = cutMesh(mesh, k, c, above);
-    if (cut.segments.empty()) fail("cuts no triangle of the mesh (it passes between its parts)");
+    if (cut.segments.empty())
+      return fail("cuts no triangle of the mesh (it passes between its parts)");
     const Loops loops = traceLoops(cut);
 
     // Every closed loop, counter-clockwise, with its area and centroid.
-    std::vector<MeshSection> candidates;
+    std::vector<MeshSection>& candidates = result.candidates;
     std::size_t degenerate = 0;
     for (const auto& chain : loops.closed) {
       MeshSection loop;
@@ -293,11 +302,27 @@ std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options
       candidates.push_back(std::move(loop));
     }
     if (candidates.empty())
-      fail(
+      return fail(
           fmt::format("has no closed loop: the section is {} open chain{} and {} degenerate loop{} "
                       "(the mesh is open or only touches the plane there)",
                       loops.openChains, loops.openChains == 1 ? "" : "s", degenerate,
                       degenerate == 1 ? "" : "s"));
+    return result;
+  };
+  std::vector<PlaneLoops> cuts(planes.size());
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, static_cast<std::uint32_t>(planes.size())),
+                    [&](const tbb::blocked_range<std::uint32_t>& range) {
+                      std::vector<std::uint8_t> above(mesh.vertexCount());
+                      for (std::uint32_t i = range.begin(); i != range.end(); ++i)
+                        cuts[i] = cutPlane(i, above);
+                    });
+
+  std::vector<MeshSection> sections;
+  sections.reserve(planes.size());
+  for (std::uint32_t i = 0; i < planes.size(); ++i) {
+    if (!cuts[i].error.empty()) throw MeshSliceError(cuts[i].error);
+    std::vector<MeshSection>& candidates = cuts[i].candidates;
+    const double c = planes[i];
     // The target the kept loop's centroid should be nearest to, if any.
     std::optional<Vec3> target;
     if (options.track && !sections.empty())

@@ -120,8 +120,8 @@ void appendLittle(AtomicFileWriter& file, T value) {
 }
 
 void writeObj(const Mesh& mesh, AtomicFileWriter& file) {
-  const std::vector<float>& p = mesh.positions;
-  const std::vector<float>& n = mesh.normals;
+  const auto& p = mesh.positions;
+  const auto& n = mesh.normals;
   fmt::format_to(file.out(), "# pdesurf mesh: {} vertices, {} triangles\n", mesh.vertexCount(),
                  mesh.triangleCount());
   for (std::size_t i = 0; i < p.size(); i += 3) {
@@ -132,7 +132,7 @@ void writeObj(const Mesh& mesh, AtomicFileWriter& file) {
     fmt::format_to(file.out(), FMT_COMPILE("vn {} {} {}\n"), n[i], n[i + 1], n[i + 2]);
     file.checkpoint();
   }
-  const std::vector<std::uint32_t>& t = mesh.indices;
+  const auto& t = mesh.indices;
   for (std::size_t i = 0; i < t.size(); i += 3) {
     const std::uint64_t a = t[i] + std::uint64_t{1}, b = t[i + 1] + std::uint64_t{1},
                         c = t[i + 2] + std::uint64_t{1};
@@ -201,12 +201,12 @@ void writeStl(const Mesh& mesh, AtomicFileWriter& file, const std::string& path)
 
 void writeOff(const Mesh& mesh, AtomicFileWriter& file) {
   fmt::format_to(file.out(), "OFF\n{} {} 0\n", mesh.vertexCount(), mesh.triangleCount());
-  const std::vector<float>& p = mesh.positions;
+  const auto& p = mesh.positions;
   for (std::size_t i = 0; i < p.size(); i += 3) {
     fmt::format_to(file.out(), FMT_COMPILE("{} {} {}\n"), p[i], p[i + 1], p[i + 2]);
     file.checkpoint();
   }
-  const std::vector<std::uint32_t>& t = mesh.indices;
+  const auto& t = mesh.indices;
   for (std::size_t i = 0; i < t.size(); i += 3) {
     fmt::format_to(file.out(), FMT_COMPILE("3 {} {} {}\n"), t[i], t[i + 1], t[i + 2]);
     file.checkpoint();
@@ -215,7 +215,7 @@ void writeOff(const Mesh& mesh, AtomicFileWriter& file) {
 
 /// Appends `values` to a glTF buffer in little-endian order; returns the byte offset.
 template <typename T>
-std::size_t appendToBuffer(std::vector<unsigned char>& buffer, const std::vector<T>& values) {
+std::size_t appendToBuffer(std::vector<unsigned char>& buffer, const MeshBuffer<T>& values) {
   const std::size_t offset = buffer.size();
   buffer.resize(offset + values.size() * sizeof(T));
   unsigned char* out = buffer.data() + offset;
@@ -472,7 +472,7 @@ class ByteReader {
 };
 
 /// Appends polygon `corners` to `indices` as a fan of triangles.
-void appendFan(const std::vector<std::uint32_t>& corners, std::vector<std::uint32_t>& indices) {
+void appendFan(const std::vector<std::uint32_t>& corners, MeshBuffer<std::uint32_t>& indices) {
   for (std::size_t i = 1; i + 1 < corners.size(); ++i)
     indices.insert(indices.end(), {corners[0], corners[i], corners[i + 1]});
 }
@@ -824,7 +824,7 @@ AccessorData accessorData(const tinygltf::Model& model, int index, const std::st
 
 /// Appends the float VEC3 accessor `index` to `out`.
 std::size_t appendVec3(const tinygltf::Model& model, int index, const std::string& path,
-                       const std::string& what, std::vector<float>& out) {
+                       const std::string& what, MeshBuffer<float>& out) {
   const AccessorData data = accessorData(model, index, path, what);
   const tinygltf::Accessor& accessor = model.accessors[static_cast<std::size_t>(index)];
   if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||

@@ -14,7 +14,11 @@
 #include <fmt/format.h>
 #include <Eigen/LU>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "pdesurf/analysis.hpp"
+#include "runtime/simd.hpp"
 
 namespace pdesurf {
 
@@ -382,16 +386,15 @@ HornerComponent hornerComponent(const VertexFramePatch& patch, int axis) {
 
 namespace {
 
-/// The SIMD loop of evaluatePolynomial, on raw arrays that do not alias (a function of its
-/// own: inlined into its caller, GCC 12 no longer vectorises it).
-[[gnu::noinline]] void hornerLoop(HornerComponent cx, HornerComponent cy, HornerComponent cz,
-                                  std::size_t n, const double* __restrict pu,
-                                  const double* __restrict pv, double* __restrict x,
-                                  double* __restrict y, double* __restrict z, double* __restrict ux,
-                                  double* __restrict uy, double* __restrict uz,
-                                  double* __restrict vx, double* __restrict vy,
-                                  double* __restrict vz, double* __restrict nx,
-                                  double* __restrict ny, double* __restrict nz) {
+/// The SIMD loop of evaluatePolynomial, on raw arrays that do not alias: inlined into one
+/// wrapper per SIMD level (src/runtime/simd.hpp), whose own __restrict parameters let GCC
+/// vectorise it (inlined into evaluatePolynomial, GCC 12 does not).
+PDESURF_ALWAYS_INLINE void hornerLoop(
+    HornerComponent cx, HornerComponent cy, HornerComponent cz, std::size_t n,
+    const double* __restrict pu, const double* __restrict pv, double* __restrict x,
+    double* __restrict y, double* __restrict z, double* __restrict ux, double* __restrict uy,
+    double* __restrict uz, double* __restrict vx, double* __restrict vy, double* __restrict vz,
+    double* __restrict nx, double* __restrict ny, double* __restrict nz) {
   for (std::size_t i = 0; i < n; ++i) {
     double sx, sy, sz, sux, suy, suz, svx, svy, svz;
     const double ui = pu[i], vi = pv[i];
@@ -408,16 +411,45 @@ namespace {
   }
 }
 
+using HornerLoop = void (*)(HornerComponent, HornerComponent, HornerComponent, std::size_t,
+                            const double*, const double*, double*, double*, double*, double*,
+                            double*, double*, double*, double*, double*, double*, double*, double*);
+#define PDESURF_HORNER_LOOP(name, target)                                                         \
+  [[gnu::noinline]] target void name(                                                             \
+      HornerComponent cx, HornerComponent cy, HornerComponent cz, std::size_t n,                  \
+      const double* __restrict pu, const double* __restrict pv, double* __restrict x,             \
+      double* __restrict y, double* __restrict z, double* __restrict ux, double* __restrict uy,   \
+      double* __restrict uz, double* __restrict vx, double* __restrict vy, double* __restrict vz, \
+      double* __restrict nx, double* __restrict ny, double* __restrict nz) {                      \
+    hornerLoop(cx, cy, cz, n, pu, pv, x, y, z, ux, uy, uz, vx, vy, vz, nx, ny, nz);               \
+  }
+PDESURF_HORNER_LOOP(hornerLoopV2, )
+PDESURF_HORNER_LOOP(hornerLoopV3, PDESURF_TARGET_V3)
+PDESURF_HORNER_LOOP(hornerLoopV4, PDESURF_TARGET_V4)
+#undef PDESURF_HORNER_LOOP
+
+/// Points per parallel task of the batched evaluation (a few microseconds of work).
+constexpr std::size_t kHornerPointsPerTask = 2048;
+
 }  // namespace
 
 void evaluatePolynomial(const VertexFramePatch& patch, std::span<const double> u,
                         std::span<const double> v, PolynomialPatchPoints& out) {
   assert(u.size() == v.size());
   out.resize(u.size());
-  hornerLoop(hornerComponent(patch, 0), hornerComponent(patch, 1), hornerComponent(patch, 2),
-             u.size(), u.data(), v.data(), out.x.data(), out.y.data(), out.z.data(), out.ux.data(),
-             out.uy.data(), out.uz.data(), out.vx.data(), out.vy.data(), out.vz.data(),
-             out.nx.data(), out.ny.data(), out.nz.data());
+  const HornerLoop loop = detail::simdChoose<HornerLoop>(hornerLoopV2, hornerLoopV3, hornerLoopV4);
+  const HornerComponent cx = hornerComponent(patch, 0), cy = hornerComponent(patch, 1),
+                        cz = hornerComponent(patch, 2);
+  // Every point is independent: blocks in parallel give the same values for any thread count.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, u.size(), kHornerPointsPerTask),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      const std::size_t i = r.begin();
+                      loop(cx, cy, cz, r.size(), u.data() + i, v.data() + i, out.x.data() + i,
+                           out.y.data() + i, out.z.data() + i, out.ux.data() + i, out.uy.data() + i,
+                           out.uz.data() + i, out.vx.data() + i, out.vy.data() + i,
+                           out.vz.data() + i, out.nx.data() + i, out.ny.data() + i,
+                           out.nz.data() + i);
+                    });
 }
 
 Approximation approximate(const PatchFunction& f, const ApproximationOptions& options) {

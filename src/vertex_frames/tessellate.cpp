@@ -26,7 +26,12 @@
 
 #include <fmt/format.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include "pdesurf/vertex_frames.hpp"
+#include "runtime/simd.hpp"
 #include "vertex_frames/force_shape.hpp"
 
 namespace pdesurf {
@@ -40,6 +45,8 @@ constexpr std::size_t kLanes = 8;
 /// Points per block of the row kernel on rows long enough (two AVX-512 registers of doubles
 /// make one register of floats).
 constexpr std::size_t kWideBlock = 16;
+/// Mesh points per parallel task: enough (tens of microseconds) that scheduling is noise.
+constexpr std::size_t kPointsPerTask = 8192;
 
 /// A normal counts as degenerate (a pole, a cusp) when |Su × Sv| is below this fraction of
 /// the patch's squared size: far below any real surface, far above rounding noise (1e-16).
@@ -181,7 +188,7 @@ void foldLines(const double (&a)[3][10], const double* __restrict y, std::size_t
 /// last one shifted back to end at `count`: it overlaps the block before and rewrites the
 /// same values, so that every block is one fixed-length vectorised loop.
 template <std::size_t B, typename Block>
-inline void forEachBlock(std::size_t count, Block&& block) {
+PDESURF_ALWAYS_INLINE void forEachBlock(std::size_t count, Block&& block) {
   for (std::size_t i0 = 0;; i0 += B) {
     if (i0 + B > count) i0 = count - B;
     block(i0);
@@ -197,9 +204,10 @@ inline void forEachBlock(std::size_t count, Block&& block) {
 /// (forEachBlock). Returns whether some point is degenerate (|Sa × Sc|² not above kDegenerate2, or
 /// NaN).
 template <std::size_t B, bool Forces>
-bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolynomials& line,
-                  const double* __restrict force, std::size_t forceStride, float* __restrict pos,
-                  float* __restrict nor, double* __restrict cross2) {
+PDESURF_ALWAYS_INLINE bool evaluateSpan(const double* __restrict x, std::size_t count,
+                                        const LinePolynomials& line, const double* __restrict force,
+                                        std::size_t forceStride, float* __restrict pos,
+                                        float* __restrict nor, double* __restrict cross2) {
   double p[3][4], da[3][3], dc[3][3], nrm[3][5];
   const double sign = line.sign;
   for (std::size_t k = 0; k < 3; ++k) {
@@ -212,7 +220,7 @@ bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolyn
   }
   // Positions, then normals: two loops over the line's blocks, each with fewer values live
   // (its coefficients stay in registers) than one would need.
-  forEachBlock<B>(count, [&](std::size_t i0) {
+  forEachBlock<B>(count, [&](std::size_t i0) PDESURF_ALWAYS_INLINE_LAMBDA {
     const double* __restrict t = x + i0;
     const double* __restrict f = Forces ? force + i0 : nullptr;
     float* __restrict po = pos + 3 * i0;
@@ -224,7 +232,7 @@ bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolyn
       }
     }
   });
-  forEachBlock<B>(count, [&](std::size_t i0) {
+  forEachBlock<B>(count, [&](std::size_t i0) PDESURF_ALWAYS_INLINE_LAMBDA {
     const double* __restrict t = x + i0;
     const double* __restrict f = Forces ? force + i0 : nullptr;
     float* __restrict no = nor + 3 * i0;
@@ -263,14 +271,30 @@ bool evaluateSpan(const double* __restrict x, std::size_t count, const LinePolyn
 }
 
 /// evaluateSpan with or without forces, in the widest blocks that fit (count ≥ kLanes).
-bool evaluateLine(const double* x, std::size_t count, const LinePolynomials& r, const double* force,
-                  std::size_t forceStride, float* pos, float* nor, double* cross2) {
+PDESURF_ALWAYS_INLINE bool evaluateLineBody(const double* x, std::size_t count,
+                                            const LinePolynomials& r, const double* force,
+                                            std::size_t forceStride, float* pos, float* nor,
+                                            double* cross2) {
   if (count >= kWideBlock)
     return force ? evaluateSpan<kWideBlock, true>(x, count, r, force, forceStride, pos, nor, cross2)
                  : evaluateSpan<kWideBlock, false>(x, count, r, nullptr, 0, pos, nor, cross2);
   return force ? evaluateSpan<kLanes, true>(x, count, r, force, forceStride, pos, nor, cross2)
                : evaluateSpan<kLanes, false>(x, count, r, nullptr, 0, pos, nor, cross2);
 }
+
+/// The row kernel for each SIMD level (src/runtime/simd.hpp), chosen once per tessellation.
+using EvaluateLine = bool (*)(const double*, std::size_t, const LinePolynomials&, const double*,
+                              std::size_t, float*, float*, double*);
+#define PDESURF_EVALUATE_LINE(name, target)                                              \
+  target bool name(const double* x, std::size_t count, const LinePolynomials& r,         \
+                   const double* force, std::size_t forceStride, float* pos, float* nor, \
+                   double* cross2) {                                                     \
+    return evaluateLineBody(x, count, r, force, forceStride, pos, nor, cross2);          \
+  }
+PDESURF_EVALUATE_LINE(evaluateLineV2, )
+PDESURF_EVALUATE_LINE(evaluateLineV3, PDESURF_TARGET_V3)
+PDESURF_EVALUATE_LINE(evaluateLineV4, PDESURF_TARGET_V4)
+#undef PDESURF_EVALUATE_LINE
 
 /// Quads whose four corners are patch-interior points have ids a, a+1 (row j-1) and
 /// a+inner, a+inner+1 (row j): their indices are a fixed pattern plus a running base,
@@ -339,8 +363,11 @@ struct PatchRing {
 };
 
 /// Tessellates surfaces laid out for one topology and resolution: layOut numbers the
-/// vertices (and checks that the mesh fits 32-bit indices), run writes a surface's vertices,
-/// and its triangles when asked. Holds every scratch buffer, so repeated runs do not allocate.
+/// vertices and the triangles (and checks that the mesh fits 32-bit indices), run writes a
+/// surface's vertices, and its triangles when asked. Patches are tessellated in parallel
+/// (oneTBB), each into its own ranges of the mesh; the boundary points that patches share
+/// are then stored and their normals summed in patch order, one thread, so the mesh is the
+/// same bytes for any number of threads. Holds every buffer, so repeated runs do not allocate.
 class TessellationEngine {
  public:
   void layOut(const FrameTopology& topo, std::uint32_t frames, std::uint32_t resolution);
@@ -348,6 +375,13 @@ class TessellationEngine {
 
  private:
   PatchRing ring(const FrameTopology& topo, std::uint32_t k, std::uint32_t* ids) const;
+  /// One thread's buffers.
+  struct Scratch {
+    std::vector<std::uint32_t> ids0, ids1;
+    std::vector<float> linePos, lineNor;
+    std::vector<double> lineCross2, rowCross2, rowFolds, columnFolds, forceRow;
+    std::vector<ForceTables> forceTables;
+  };
   /// Where the triangles of the patch being tessellated go, row by row.
   struct TriangleRows {
     std::uint32_t k;      ///< the patch
@@ -355,13 +389,18 @@ class TessellationEngine {
     const PatchRing* pr;  ///< its boundary ring (ids at `ring`)
     const std::uint32_t* ring;
     std::uint32_t patchBase;          ///< mesh id of its first interior point
-    std::size_t triangles;            ///< written so far (the mesh's), the next one's index
+    std::size_t triangles;            ///< the next triangle's index in the mesh
     std::uint32_t *rowIds, *prevIds;  ///< mesh ids of the last row and the one before
   };
-  void evaluatePatchVertices(const VertexFramePatch& patch, double flip, const PatchRing& pr,
-                             const std::uint32_t* ring, std::uint32_t patchBase,
-                             TriangleRows* triangles, Mesh& mesh);
-  void writeTriangleRow(TriangleRows& rows, std::uint32_t j, Mesh& mesh);
+  /// Patch k's interior points (and triangles when writeTriangles) into the mesh, its
+  /// boundary ring into ringPos_ and ringNor_.
+  void evaluatePatch(const VertexFrameSurface& surface, std::uint32_t k, bool writeTriangles,
+                     Scratch& scratch, Mesh& mesh);
+  /// Patch k's boundary ring into the mesh: positions stored, normals summed.
+  void storeRing(std::uint32_t k, Mesh& mesh);
+  void writeTriangleRow(TriangleRows& rows, std::uint32_t j, std::uint32_t* indices,
+                        std::uint32_t* patchIds) const;
+  void fitScratch(Scratch& scratch) const;
 
   // The layout.
   std::uint32_t n_ = 0, inner_ = 0, frames_ = 0;
@@ -373,14 +412,18 @@ class TessellationEngine {
   /// Per patch: its boundary ring's 4n mesh ids (see PatchRing) and what the ring repeats.
   std::vector<std::uint32_t> rings_;
   std::vector<PatchRing> patchRings_;
+  /// Per patch, the index of its first triangle (one more entry: the mesh's count).
+  std::vector<std::size_t> firstTriangle_;
 
-  // Scratch.
-  std::vector<std::uint32_t> ids0_, ids1_;
-  std::vector<float> linePos_, lineNor_, firstNormal_;
-  std::vector<double> lineCross2_, rowCross2_, rowFolds_, columnFolds_;
+  EvaluateLine evaluateLine_ = evaluateLineV2;  ///< the row kernel for this CPU
+
+  /// Per patch, its four sides' points (n each, at a stride of np_): positions and unit
+  /// normals, interleaved floats, as the sides' own directions run. Written before they are
+  /// read (as firstNormal_), so left uninitialised (MeshBuffer).
+  MeshBuffer<float> ringPos_, ringNor_;
+  MeshBuffer<float> firstNormal_;
   std::vector<std::uint8_t> hasFirst_;
-  std::vector<ForceTables> forceTables_;
-  std::vector<double> forceRow_;
+  tbb::enumerable_thread_specific<Scratch> scratch_;
 };
 
 void TessellationEngine::layOut(const FrameTopology& topo, std::uint32_t frames,
@@ -435,14 +478,33 @@ void TessellationEngine::layOut(const FrameTopology& topo, std::uint32_t frames,
   patchRings_.resize(frames);
   for (std::uint32_t k = 0; k < frames; ++k)
     patchRings_[k] = ring(topo, k, rings_.data() + std::size_t{k} * 4 * n);
-  ids0_.resize(n);
-  ids1_.resize(n);
-  linePos_.resize(4 * 3 * np_);
-  lineNor_.resize(4 * 3 * np_);
-  lineCross2_.resize(4 * np_);
-  rowCross2_.resize(np_);
-  rowFolds_.resize(kFields * np_);
-  columnFolds_.resize(kFields * kLanes);
+  // Each patch's triangles start where the ones before end: two per quad, fewer where the
+  // ring repeats ids (degenerate triangles are dropped), counted here by writing them once.
+  firstTriangle_.assign(std::size_t{frames} + 1, 0);
+  const std::size_t perPatch = std::size_t{2} * (n - 1) * (n - 1);
+  std::vector<std::uint32_t> countIndices, countPatchIds, ids0(n), ids1(n);
+  for (std::uint32_t k = 0; k < frames; ++k) {
+    std::size_t count = perPatch;
+    if (patchRings_[k].repeatsIds) {
+      countIndices.resize(3 * perPatch);
+      countPatchIds.resize(perPatch);
+      const std::uint32_t patchBase = boundaryCount_ + k * inner * inner;
+      TriangleRows rows{k,
+                        topo.flipped[k] ? -1.0 : 1.0,
+                        &patchRings_[k],
+                        rings_.data() + std::size_t{k} * 4 * n,
+                        patchBase,
+                        0,
+                        ids0.data(),
+                        ids1.data()};
+      for (std::uint32_t j = 0; j < n; ++j)
+        writeTriangleRow(rows, j, countIndices.data(), countPatchIds.data());
+      count = rows.triangles;
+    }
+    firstTriangle_[k + 1] = firstTriangle_[k] + count;
+  }
+  ringPos_.resize(std::size_t{frames} * 4 * 3 * np_);
+  ringNor_.resize(std::size_t{frames} * 4 * 3 * np_);
   firstNormal_.resize(std::size_t{boundaryCount_} * 3);
   hasFirst_.resize(boundaryCount_);
 }
@@ -481,12 +543,18 @@ PatchRing TessellationEngine::ring(const FrameTopology& topo, std::uint32_t k,
   return pr;
 }
 
-void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, double flip,
-                                               const PatchRing& pr, const std::uint32_t* ring,
-                                               std::uint32_t patchBase, TriangleRows* triangles,
-                                               Mesh& mesh) {
+void TessellationEngine::evaluatePatch(const VertexFrameSurface& surface, std::uint32_t k,
+                                       bool writeTriangles, Scratch& sc, Mesh& mesh) {
   const std::uint32_t n = n_, inner = inner_;
   const std::size_t np = np_;
+  const VertexFramePatch& patch = surface.patches[k];
+  const double flip = surface.topology->flipped[k] ? -1.0 : 1.0;
+  const PatchRing& pr = patchRings_[k];
+  const std::uint32_t* ring = rings_.data() + std::size_t{k} * 4 * n;
+  const std::uint32_t patchBase = boundaryCount_ + k * inner * inner;
+  TriangleRows rows{
+      k, flip, &pr, ring, patchBase, firstTriangle_[k], sc.ids0.data(), sc.ids1.data()};
+  TriangleRows* triangles = writeTriangles ? &rows : nullptr;
   double c[3][10], cSwapped[3][10];
   for (int comp = 0; comp < 3; ++comp)
     for (int i = 0; i < 10; ++i) {
@@ -503,24 +571,24 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
     scale += 2.0 * M_PI * f.k.cwiseAbs().maxCoeff() /
              std::min(f.region.u1 - f.region.u0, f.region.v1 - f.region.v0);
   const double invScale = scale > 0.0 && std::isfinite(scale) ? 1.0 / scale : 1.0;
-  forceTables_.resize(patch.forces.size());
+  sc.forceTables.resize(patch.forces.size());
   for (std::size_t f = 0; f < patch.forces.size(); ++f) {
     const Region& r = patch.forces[f].region;
-    shapeTable(tp_, r.u0, r.u1, forceTables_[f].su, forceTables_[f].dsu);
-    shapeTable(tp_, r.v0, r.v1, forceTables_[f].sv, forceTables_[f].dsv);
+    shapeTable(tp_, r.u0, r.u1, sc.forceTables[f].su, sc.forceTables[f].dsu);
+    shapeTable(tp_, r.v0, r.v1, sc.forceTables[f].sv, sc.forceTables[f].dsv);
   }
   // Row j (column when `column`) of the patch, `count` points from parameter index `from`.
   // Every row, and the two boundary columns; Sa × Sc is Su × Sv on a row, Sv × Su on a column.
-  foldLines(c, tp_.data(), n, flip, invScale, rowFolds_.data());
+  foldLines(c, tp_.data(), n, flip, invScale, sc.rowFolds.data());
   const double columnParams[kLanes] = {0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0};  // padded
-  foldLines(cSwapped, columnParams, 2, -flip, invScale, columnFolds_.data());
+  foldLines(cSwapped, columnParams, 2, -flip, invScale, sc.columnFolds.data());
   auto line = [&](bool column, std::size_t j, std::size_t from, std::size_t count, float* pos,
                   float* nor, double* cross2) {
-    const LinePolynomials r = column ? foldedLine(columnFolds_.data(), j == 0 ? 0 : 1, -flip)
-                                     : foldedLine(rowFolds_.data(), j, flip);
-    const bool forces = lineForces(patch, forceTables_, column, j, np, invScale, forceRow_);
-    return evaluateLine(tp_.data() + from, count, r, forces ? forceRow_.data() + from : nullptr, np,
-                        pos, nor, cross2);
+    const LinePolynomials r = column ? foldedLine(sc.columnFolds.data(), j == 0 ? 0 : 1, -flip)
+                                     : foldedLine(sc.rowFolds.data(), j, flip);
+    const bool forces = lineForces(patch, sc.forceTables, column, j, np, invScale, sc.forceRow);
+    return evaluateLine_(tp_.data() + from, count, r, forces ? sc.forceRow.data() + from : nullptr,
+                         np, pos, nor, cross2);
   };
   // Degenerate normals: |Su × Sv| < kDegenerateNormalSine · scale² (rounding noise at a
   // pole, a cusp). Points on a collapsed side are a pole whatever rounding says. There
@@ -538,36 +606,36 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
   // Interior rows, straight into the mesh (short rows through the line buffer), each
   // followed by the triangles between it and the row before: the triangles' stores, which
   // go to memory, then drain while the next row is computed instead of stalling in a burst.
-  if (triangles) writeTriangleRow(*triangles, 0, mesh);
+  if (triangles) writeTriangleRow(*triangles, 0, mesh.indices.data(), mesh.patchIds.data());
   for (std::uint32_t j = 1; j + 1 < n; ++j) {
     const std::size_t first = std::size_t{patchBase + (j - 1) * inner} * 3;
     float* pos = mesh.positions.data() + first;
     float* nor = mesh.normals.data() + first;
     bool degenerate;
     if (inner >= kLanes) {
-      degenerate = line(false, j, 1, inner, pos, nor, rowCross2_.data());
+      degenerate = line(false, j, 1, inner, pos, nor, sc.rowCross2.data());
     } else {
-      line(false, j, 0, np, linePos_.data(), lineNor_.data(), rowCross2_.data());
-      std::copy_n(linePos_.data() + 3, 3 * inner, pos);
-      std::copy_n(lineNor_.data() + 3, 3 * inner, nor);
-      std::copy_n(rowCross2_.data() + 1, inner, rowCross2_.data());
+      line(false, j, 0, np, sc.linePos.data(), sc.lineNor.data(), sc.rowCross2.data());
+      std::copy_n(sc.linePos.data() + 3, 3 * inner, pos);
+      std::copy_n(sc.lineNor.data() + 3, 3 * inner, nor);
+      std::copy_n(sc.rowCross2.data() + 1, inner, sc.rowCross2.data());
       degenerate = true;  // checked point by point below
     }
     if (degenerate)
       for (std::uint32_t i = 0; i < inner; ++i)
-        if (!(rowCross2_[i] > kDegenerate2)) insetNormal(i + 1, j, nor + 3 * i);
-    if (triangles) writeTriangleRow(*triangles, j, mesh);
+        if (!(sc.rowCross2[i] > kDegenerate2)) insetNormal(i + 1, j, nor + 3 * i);
+    if (triangles) writeTriangleRow(*triangles, j, mesh.indices.data(), mesh.patchIds.data());
   }
-  if (triangles) writeTriangleRow(*triangles, n - 1, mesh);
+  if (triangles) writeTriangleRow(*triangles, n - 1, mesh.indices.data(), mesh.patchIds.data());
 
   // The boundary ring, side by side in each side's own direction (as the ring's ids run):
   // Alpha (v = 0) and Beta (v = 1) are rows, Delta (u = 1) and Gamma (u = 0) columns.
   for (int s = 0; s < 4; ++s) {
     const bool column = s == 1 || s == 3;
     const std::size_t fixed = s == 0 || s == 3 ? 0 : n - 1;
-    float* pos = linePos_.data() + s * 3 * np;
-    float* nor = lineNor_.data() + s * 3 * np;
-    double* cross2 = lineCross2_.data() + s * np;
+    float* pos = ringPos_.data() + (std::size_t{k} * 4 + s) * 3 * np;
+    float* nor = ringNor_.data() + (std::size_t{k} * 4 + s) * 3 * np;
+    double* cross2 = sc.lineCross2.data();
     const bool degenerate = line(column, fixed, 0, n >= kLanes ? n : np, pos, nor, cross2);
     auto at = [&](std::size_t q) -> std::array<std::size_t, 2> {  // grid (i, j) of point q
       return column ? std::array<std::size_t, 2>{fixed, q} : std::array<std::size_t, 2>{q, fixed};
@@ -576,6 +644,18 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
       for (std::size_t q = 0; q < n; ++q)
         if (pr.collapsedSide[s] || !(cross2[q] > kDegenerate2))
           insetNormal(at(q)[0], at(q)[1], nor + 3 * q);
+  }
+}
+
+void TessellationEngine::storeRing(std::uint32_t k, Mesh& mesh) {
+  const std::uint32_t n = n_, inner = inner_;
+  const std::size_t np = np_;
+  const PatchRing& pr = patchRings_[k];
+  const std::uint32_t* ring = rings_.data() + std::size_t{k} * 4 * n;
+  for (int s = 0; s < 4; ++s) {
+    const bool column = s == 1 || s == 3;
+    const float* pos = ringPos_.data() + (std::size_t{k} * 4 + s) * 3 * np;
+    const float* nor = ringNor_.data() + (std::size_t{k} * 4 + s) * 3 * np;
     // Corners come with the rows; every other boundary point of the patch once.
     const std::uint32_t* ids = ring + s * n;
     float* __restrict positions = mesh.positions.data();
@@ -627,7 +707,8 @@ void TessellationEngine::evaluatePatchVertices(const VertexFramePatch& patch, do
   }
 }
 
-void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j, Mesh& mesh) {
+void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j,
+                                          std::uint32_t* indices, std::uint32_t* patchIds) const {
   const std::uint32_t n = n_, inner = inner_, k = rows.k, patchBase = rows.patchBase;
   const double flip = rows.flip;
   const PatchRing& pr = *rows.pr;
@@ -656,8 +737,8 @@ void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j, M
 
   // Triangles between row j-1 and row j: quad (prev i, prev i+1, row i+1, row i).
   if (j == 0) return;
-  std::uint32_t* out = mesh.indices.data() + rows.triangles * 3;
-  std::uint32_t* outPatch = mesh.patchIds.data() + rows.triangles;
+  std::uint32_t* out = indices + rows.triangles * 3;
+  std::uint32_t* outPatch = patchIds + rows.triangles;
   // The quads at corners (1,0) and (0,1) are split through the corner, so that no
   // triangle is made of boundary points alone: two frames that share both sides at a
   // corner (a pillow) would otherwise emit the same triangle twice.
@@ -697,37 +778,30 @@ void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j, M
       }
     }
   }
-  rows.triangles = static_cast<std::size_t>(outPatch - mesh.patchIds.data());
+  rows.triangles = static_cast<std::size_t>(outPatch - patchIds);
 }
 
 void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool writeTriangles) {
-  const FrameTopology& topo = *surface.topology;
-  const std::uint32_t n = n_, inner = inner_;
+  evaluateLine_ = detail::simdChoose<EvaluateLine>(evaluateLineV2, evaluateLineV3, evaluateLineV4);
   mesh.positions.resize(std::size_t{vertexCount_} * 3);
   mesh.normals.resize(std::size_t{vertexCount_} * 3);
   if (writeTriangles) {
-    // Room for every quad's two triangles; collapsed sides drop some, trimmed at the end.
-    mesh.indices.resize(std::size_t{frames_} * (n - 1) * (n - 1) * 6);
-    mesh.patchIds.resize(std::size_t{frames_} * (n - 1) * (n - 1) * 2);
+    mesh.indices.resize(firstTriangle_[frames_] * 3);
+    mesh.patchIds.resize(firstTriangle_[frames_]);
   }
   // Boundary normals are sums over the patches that meet there, normalised at the end.
   std::fill_n(mesh.normals.begin(), std::size_t{boundaryCount_} * 3, 0.0f);
   std::fill(hasFirst_.begin(), hasFirst_.end(), std::uint8_t{0});
-  std::size_t triangles = 0;
-  for (std::uint32_t k = 0; k < frames_; ++k) {
-    const double flip = topo.flipped[k] ? -1.0 : 1.0;
-    const PatchRing& pr = patchRings_[k];
-    const std::uint32_t* ring = rings_.data() + std::size_t{k} * 4 * n;
-    const std::uint32_t patchBase = boundaryCount_ + k * inner * inner;
-    TriangleRows rows{k, flip, &pr, ring, patchBase, triangles, ids0_.data(), ids1_.data()};
-    evaluatePatchVertices(surface.patches[k], flip, pr, ring, patchBase,
-                          writeTriangles ? &rows : nullptr, mesh);
-    triangles = rows.triangles;
-  }
-  if (writeTriangles) {
-    mesh.indices.resize(triangles * 3);
-    mesh.patchIds.resize(triangles);
-  }
+  // Patches in parallel, in blocks of about kPointsPerTask points.
+  const std::size_t grain = std::max<std::size_t>(1, kPointsPerTask / (std::size_t{n_} * n_));
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, frames_, grain),
+                    [&](const tbb::blocked_range<std::uint32_t>& range) {
+                      Scratch& sc = scratch_.local();
+                      fitScratch(sc);
+                      for (std::uint32_t k = range.begin(); k != range.end(); ++k)
+                        evaluatePatch(surface, k, writeTriangles, sc, mesh);
+                    });
+  for (std::uint32_t k = 0; k < frames_; ++k) storeRing(k, mesh);
 
   // Where the patches' normals cancel (the rim of a pillow, a fin folded back) no average
   // direction exists, and the first patch's normal stands for all. Branch-free: vectorises.
@@ -740,6 +814,17 @@ void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool
     for (int comp = 0; comp < 3; ++comp)
       nv[comp] = cancelled ? first[3 * v + comp] : nv[comp] / len;
   }
+}
+
+void TessellationEngine::fitScratch(Scratch& sc) const {
+  sc.ids0.resize(n_);
+  sc.ids1.resize(n_);
+  sc.linePos.resize(3 * np_);
+  sc.lineNor.resize(3 * np_);
+  sc.lineCross2.resize(np_);
+  sc.rowCross2.resize(np_);
+  sc.rowFolds.resize(kFields * np_);
+  sc.columnFolds.resize(kFields * kLanes);
 }
 
 }  // namespace

@@ -610,6 +610,33 @@ TEST_F(CliBuild, WritesEveryFormatWithTheCountsItPrints) {
   }
 }
 
+TEST_F(CliBuild, ThreadsChangeNoByteOfTheMesh) {
+  // Enough frames (a 12 × 12 sheet at resolution 33) that the work is split between threads.
+  put("m.json", modelJson(latticeModel(12, 12, 0.2, true)));
+  for (const char* args : {"build m.json -o one.ply --resolution 33 --threads 1",
+                           "--threads 2 build m.json -o two.ply --resolution 33",
+                           "build m.json -o all.ply --resolution 33"}) {
+    const CliRun r = run(args);
+    ASSERT_EQ(r.code, 0) << args << "\n" << r.err;
+  }
+  const std::string one = readText(path("one.ply"));
+  EXPECT_GT(one.size(), 100000u);
+  EXPECT_EQ(readText(path("two.ply")), one);
+  EXPECT_EQ(readText(path("all.ply")), one);
+}
+
+TEST_F(CliUsage, ThreadsMustBeACount) {
+  put("m.json", kOneFrame);
+  for (const char* args :
+       {"build m.json -o out.obj --threads -1", "build m.json -o out.obj --threads x",
+        "--threads 5000 build m.json -o out.obj"}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_TRUE(contains(r.err, "--threads")) << args << "\n" << r.err;
+  }
+  EXPECT_EQ(entries(), std::vector<std::string>{"m.json"});
+}
+
 TEST_F(CliBuild, QuietPrintsNothing) {
   put("m.json", kOneFrame);
   const CliRun r = run("build m.json -o out.ply -q --resolution 3");

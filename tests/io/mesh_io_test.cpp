@@ -125,8 +125,8 @@ bool isWatertightAndOriented(const Mesh& mesh) {
 }
 
 /// Float buffers equal bit for bit (so -0 differs from 0).
-::testing::AssertionResult bitsEqual(const std::vector<float>& expected,
-                                     const std::vector<float>& actual) {
+::testing::AssertionResult bitsEqual(const MeshBuffer<float>& expected,
+                                     const MeshBuffer<float>& actual) {
   if (expected.size() != actual.size())
     return ::testing::AssertionFailure()
            << "sizes differ: " << expected.size() << " vs " << actual.size();
@@ -508,7 +508,7 @@ TEST(MeshIoRead, OffWithCommentsAndAQuad) {
   writeText(dir.file("normals.off"),
             "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
   EXPECT_EQ(readMesh(dir.file("normals.off")).normals,
-            (std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1}));
+            (MeshBuffer<float>{0, 0, 1, 0, 0, 1, 0, 0, 1}));
 }
 
 TEST(MeshIoRead, ObjCornerFormsNegativeIndicesAndPolygons) {
@@ -521,8 +521,8 @@ TEST(MeshIoRead, ObjCornerFormsNegativeIndicesAndPolygons) {
             "f 1/1/1 2//2 -2/1/-2 4//4\r\n");
   const Mesh quad = readMesh(dir.file("quad.obj"));
   EXPECT_EQ(quad.vertexCount(), 4u);
-  EXPECT_EQ(quad.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
-  EXPECT_EQ(quad.normals, (std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, -1}));
+  EXPECT_EQ(quad.indices, (MeshBuffer<std::uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(quad.normals, (MeshBuffer<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, -1}));
 
   // Vertex 1 paired with two different normals: the normals are dropped.
   writeText(dir.file("mixed.obj"),
@@ -551,9 +551,9 @@ TEST(MeshIoRead, AsciiPlyWithDoublesAndOtherProperties) {
             "0 0 0 255 0 0 1\n1 0 0 0 0 0 1\n1 1 0 0 0 0 1\n0 1 0 9 0 0 1\n"
             "7 4 0 1 2 3\n0 1\n");
   const Mesh mesh = readMesh(dir.file("a.ply"));
-  EXPECT_EQ(mesh.positions, (std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}));
-  EXPECT_EQ(mesh.normals, (std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}));
-  EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(mesh.positions, (MeshBuffer<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}));
+  EXPECT_EQ(mesh.normals, (MeshBuffer<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}));
+  EXPECT_EQ(mesh.indices, (MeshBuffer<std::uint32_t>{0, 1, 2, 0, 2, 3}));
 
   writeText(dir.file("noz.ply"),
             "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"

@@ -16,7 +16,7 @@ using testing::LatticeOptions;
 
 /// Bit-for-bit equality of every buffer (memcmp, so that -0.0 ≠ 0.0 and NaNs compare too).
 template <class T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+bool sameBits(const MeshBuffer<T>& a, const MeshBuffer<T>& b) {
   return a.size() == b.size() &&
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
