@@ -129,7 +129,7 @@ CLI::App* RebuildCommand::add(CLI::App& app) {
   cmd->add_option("--axis", axis, "cross-sections: axis the slicing planes are perpendicular to")
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->capture_default_str();
-  cmd->add_option("--count", count, "cross-sections: number of sections K")
+  cmd->add_option("--count", sectionCount, "cross-sections: number of sections K")
       ->check(CLI::Range(2u, 100000u))
       ->capture_default_str();
   cmd->add_option("--range", range,
@@ -202,7 +202,7 @@ int RebuildCommand::runCrossSections() const {
       throw RebuildUsageError(fmt::format("-o {}: a model file ends in .json", outPath));
     SectionRebuildOptions options;
     options.slice.axis = *parseAxis(axis);
-    options.slice.count = count;
+    options.slice.count = sectionCount;
     if (!range.empty()) {
       options.slice.range = {range[0], range[1]};
       try {
@@ -301,8 +301,8 @@ int RebuildCommand::runCrossSections() const {
         sections.back().coordinate, modes, exact ? " + exact remainder" : "", a, ends,
         outPath.empty() ? "" : " -> " + outPath);
     fmt::print("part of the mesh: {}, {}, diagonal {:.6g}\n",
-               cli::count(part.vertexCount(), "vertex"),
-               cli::count(part.triangleCount(), "triangle"), d.diagonal);
+               count(part.vertexCount(), "vertex"),
+               count(part.triangleCount(), "triangle"), d.diagonal);
     for (const auto& [label, w] :
          {std::pair{"model -> part", &d.aToB}, std::pair{"part -> model", &d.bToA}})
       fmt::print("{}  RMS {:.4g} ({})  mean {:.4g} ({})  max {:.4g} ({})\n", label, w->rms,

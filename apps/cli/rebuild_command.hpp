@@ -28,7 +28,7 @@ struct RebuildCommand {
   std::string meshPath, outPath, as, partPath, name, ends = "natural";
   // Cross sections: the slicing (as `pdesurf slice`) and the chain.
   std::string axis = "z";
-  std::uint32_t count = 25, modes = 8, points = 128;
+  std::uint32_t sectionCount = 25, modes = 8, points = 128;
   std::vector<double> range, near;
   bool track = false;
   double a = 1.0;

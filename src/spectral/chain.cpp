@@ -252,15 +252,7 @@ ChainPatch hermitePatch(const SpectralOperator& local, std::uint32_t modes,
     c.precision = cache[n].basis.extended() ? ModePrecision::Extended : ModePrecision::Double;
   }
   patch.bases_ = std::move(bases);
-  for (ConditionData& c : cond) {
-    SpectralPatch::ResolvedCondition r;
-    r.derivative = c.derivative;
-    r.u = c.u;
-    r.fourier = std::move(c.fourier);
-    r.points = std::move(c.points);
-    r.v = std::move(c.v);
-    patch.conditions_.push_back(std::move(r));
-  }
+  spectral::storeConditions(patch, std::move(cond));
   out.firstCurve = out.shownFirstCurve = first;
   out.lastCurve = out.shownLastCurve = first + 1;
   out.length = 1.0;

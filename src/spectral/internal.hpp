@@ -128,6 +128,9 @@ ConditionData resolveCurve(const CurveInput& curve, std::uint32_t modes,
 SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, double uStart,
                             double uEnd, std::vector<ConditionData> conditions);
 
+/// Keeps the conditions a patch was solved from (SpectralPatch::conditions()).
+void storeConditions(SpectralPatch& patch, std::vector<ConditionData> conditions);
+
 /// The k-th t-derivative curve of a patch at local t (t-space; chain patches have length 1):
 /// its Fourier part and the tail terms of the remainder.
 ConditionData derivativeCondition(const SpectralPatch& patch, double t, std::uint32_t k);

@@ -301,6 +301,11 @@ SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, dou
     }
     patch.tail_ = std::move(tail);
   }
+  storeConditions(patch, std::move(conditions));
+  return patch;
+}
+
+void storeConditions(SpectralPatch& patch, std::vector<ConditionData> conditions) {
   for (ConditionData& c : conditions) {
     SpectralPatch::ResolvedCondition r;
     r.derivative = c.derivative;
@@ -310,7 +315,6 @@ SpectralPatch solveResolved(const SpectralOperator& op, std::uint32_t modes, dou
     r.v = std::move(c.v);
     patch.conditions_.push_back(std::move(r));
   }
-  return patch;
 }
 
 MatrixR SpectralTailData::psi(double t, std::uint32_t first, std::uint32_t last) const {
