@@ -300,8 +300,7 @@ int RebuildCommand::runCrossSections() const {
         options.name, sections.size(), axis, sections.front().coordinate,
         sections.back().coordinate, modes, exact ? " + exact remainder" : "", a, ends,
         outPath.empty() ? "" : " -> " + outPath);
-    fmt::print("part of the mesh: {}, {}, diagonal {:.6g}\n",
-               count(part.vertexCount(), "vertex"),
+    fmt::print("part of the mesh: {}, {}, diagonal {:.6g}\n", count(part.vertexCount(), "vertex"),
                count(part.triangleCount(), "triangle"), d.diagonal);
     for (const auto& [label, w] :
          {std::pair{"model -> part", &d.aToB}, std::pair{"part -> model", &d.bToA}})
