@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "pdesurf/mesh_io.hpp"
+
 namespace pdesurf::cli {
 
 constexpr int kExitInput = 1;  ///< an input file is invalid or unreadable
@@ -31,6 +33,13 @@ inline std::string count(std::size_t n, const std::string& noun) {
   if (n == 1) return "1 " + noun;
   if (noun == "vertex") return fmt::format("{} vertices", n);
   return fmt::format("{} {}{}", n, noun, noun.ends_with("ch") ? "es" : "s");
+}
+
+/// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
+inline Mesh readTriangles(const std::string& path) {
+  Mesh mesh = readMesh(path);
+  if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
+  return mesh;
 }
 
 }  // namespace pdesurf::cli

@@ -38,6 +38,7 @@ using cli::kExitInput;
 using cli::kExitUsage;
 using cli::modelName;
 using cli::msSince;
+using cli::readTriangles;
 
 /// An argument that is well-formed but unusable with this model (exit 2).
 struct UsageError : std::runtime_error {
@@ -256,13 +257,6 @@ using Json = nlohmann::ordered_json;
 
 /// JSON for a point.
 Json pointJson(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-
-/// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
-Mesh readTriangles(const std::string& path) {
-  Mesh mesh = readMesh(path);
-  if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
-  return mesh;
-}
 
 /// `pdesurf slice`: each plane's largest closed loop, as JSON.
 struct SliceCommand {

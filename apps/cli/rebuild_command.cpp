@@ -51,13 +51,6 @@ SpectralTessellateOptions measureOptions(std::size_t patches) {
 /// surface: 0.01 %, a tenth of the smallest distances compared (0.1 % and up).
 constexpr double kLoftDeflection = 1e-4;
 
-/// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
-Mesh readTarget(const std::string& path) {
-  Mesh mesh = readMesh(path);
-  if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
-  return mesh;
-}
-
 /// A bar on standard error, redrawn in place, when it is a terminal.
 class ProgressBar {
  public:
@@ -191,138 +184,129 @@ int RebuildCommand::run() const {
 }
 
 int RebuildCommand::runCrossSections() const {
-  {
-    if (!std::isfinite(a) || a == 0.0)
-      throw RebuildUsageError(fmt::format("--a {}: a must be finite and non-zero", a));
-    if (points < 2 * modes + 1)
-      throw RebuildUsageError(
-          fmt::format("--points {} cannot determine --modes {}: give at least {} points", points,
-                      modes, 2 * modes + 1));
-    if (!outPath.empty() && !outPath.ends_with(".json"))
-      throw RebuildUsageError(fmt::format("-o {}: a model file ends in .json", outPath));
-    SectionRebuildOptions options;
-    options.slice.axis = *parseAxis(axis);
-    options.slice.count = sectionCount;
-    if (!range.empty()) {
-      options.slice.range = {range[0], range[1]};
-      try {
-        slicePlanes(options.slice, 0.0, 1.0);  // the range's own checks, before any work
-      } catch (const std::invalid_argument& e) {
-        throw RebuildUsageError(fmt::format("--range: {}", e.what()));
-      }
-    }
-    if (!near.empty()) {
-      options.slice.near = Vec3(near[0], near[1], near[2]);
-      if (!options.slice.near->allFinite())
-        throw RebuildUsageError(
-            fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
-    }
-    options.slice.track = track;
-    options.modes = modes;
-    options.exact = exact;
-    options.prep.points = points;
-    options.a = a;
-    options.ends = ends == "natural" ? ChainEnds::Natural : ChainEnds::Estimated;
-    options.name = name.empty() ? modelName("", meshPath) : name;
-    auto t0 = Clock::now();
-    const Mesh mesh = readMesh(meshPath);
-    if (mesh.triangleCount() == 0) throw MeshIoError(meshPath + ": the mesh has no triangles");
-    const double readMs = msSince(t0);
-    t0 = Clock::now();
-    SectionRebuild rebuilt;
+  if (!std::isfinite(a) || a == 0.0)
+    throw RebuildUsageError(fmt::format("--a {}: a must be finite and non-zero", a));
+  if (points < 2 * modes + 1)
+    throw RebuildUsageError(
+        fmt::format("--points {} cannot determine --modes {}: give at least {} points", points,
+                    modes, 2 * modes + 1));
+  if (!outPath.empty() && !outPath.ends_with(".json"))
+    throw RebuildUsageError(fmt::format("-o {}: a model file ends in .json", outPath));
+  SectionRebuildOptions options;
+  options.slice.axis = *parseAxis(axis);
+  options.slice.count = sectionCount;
+  if (!range.empty()) {
+    options.slice.range = {range[0], range[1]};
     try {
-      rebuilt = rebuildFromSections(mesh, options);
-    } catch (const std::exception& e) {
-      throw MeshIoError(fmt::format("{}: {}", meshPath, e.what()));
-    }
-    const double rebuildMs = msSince(t0);
-    const auto& sections = rebuilt.sections;
-    rebuilt.model.description =
-        fmt::format("{} rebuilt by pdesurf rebuild from {} sections along {} in [{}, {}]", meshPath,
-                    sections.size(), axis, sections.front().coordinate, sections.back().coordinate);
-    t0 = Clock::now();
-    const Mesh part = sectionedPart(mesh, options.slice.axis, sections);
-    const Mesh surface = tessellate(rebuilt.chain, measureOptions(rebuilt.chain.patches.size()));
-    DistanceOptions distanceOptions;
-    distanceOptions.samples = samples;
-    MeshDistance d;
-    try {
-      d = meshDistance(surface, part, distanceOptions);
+      slicePlanes(options.slice, 0.0, 1.0);  // the range's own checks, before any work
     } catch (const std::invalid_argument& e) {
-      throw MeshIoError(fmt::format("{}: the rebuilt part: {}", meshPath, e.what()));
+      throw RebuildUsageError(fmt::format("--range: {}", e.what()));
     }
-    const double measureMs = msSince(t0);
-    // The peer: Open CASCADE's loft through the same sections, measured the same way.
-    std::optional<MeshDistance> loftDistance;
-    std::string loftFailure;
-    if (loft) {
-      try {
-        const Mesh lofted = occtLoft(rebuilt.prepared, kLoftDeflection * d.diagonal);
-        loftDistance = meshDistance(lofted, part, distanceOptions);
-      } catch (const std::exception& e) {
-        loftFailure = e.what();
-      }
+  }
+  if (!near.empty()) {
+    options.slice.near = Vec3(near[0], near[1], near[2]);
+    if (!options.slice.near->allFinite())
+      throw RebuildUsageError(
+          fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
+  }
+  options.slice.track = track;
+  options.modes = modes;
+  options.exact = exact;
+  options.prep.points = points;
+  options.a = a;
+  options.ends = ends == "natural" ? ChainEnds::Natural : ChainEnds::Estimated;
+  options.name = name.empty() ? modelName("", meshPath) : name;
+  auto t0 = Clock::now();
+  const Mesh mesh = readTriangles(meshPath);
+  const double readMs = msSince(t0);
+  t0 = Clock::now();
+  SectionRebuild rebuilt;
+  try {
+    rebuilt = rebuildFromSections(mesh, options);
+  } catch (const std::exception& e) {
+    throw MeshIoError(fmt::format("{}: {}", meshPath, e.what()));
+  }
+  const double rebuildMs = msSince(t0);
+  const auto& sections = rebuilt.sections;
+  rebuilt.model.description =
+      fmt::format("{} rebuilt by pdesurf rebuild from {} sections along {} in [{}, {}]", meshPath,
+                  sections.size(), axis, sections.front().coordinate, sections.back().coordinate);
+  t0 = Clock::now();
+  const Mesh part = sectionedPart(mesh, options.slice.axis, sections);
+  const Mesh surface = tessellate(rebuilt.chain, measureOptions(rebuilt.chain.patches.size()));
+  DistanceOptions distanceOptions;
+  distanceOptions.samples = samples;
+  MeshDistance d;
+  try {
+    d = meshDistance(surface, part, distanceOptions);
+  } catch (const std::invalid_argument& e) {
+    throw MeshIoError(fmt::format("{}: the rebuilt part: {}", meshPath, e.what()));
+  }
+  const double measureMs = msSince(t0);
+  // The peer: Open CASCADE's loft through the same sections, measured the same way.
+  std::optional<MeshDistance> loftDistance;
+  std::string loftFailure;
+  if (loft) {
+    try {
+      const Mesh lofted = occtLoft(rebuilt.prepared, kLoftDeflection * d.diagonal);
+      loftDistance = meshDistance(lofted, part, distanceOptions);
+    } catch (const std::exception& e) {
+      loftFailure = e.what();
     }
-    if (!partPath.empty()) writeMesh(part, partPath);
-    if (!outPath.empty()) writeFileAtomically(outPath, serializeModel(rebuilt.model));
-    const std::size_t modelBytes = storageBytes(rebuilt.model), partBytes = storageBytes(part);
-    if (json) {
-      Json j = {{"mesh", meshPath},
-                {"as", as},
-                {"output", outPath},
-                {"axis", axis},
-                {"sections", sections.size()},
-                {"from", sections.front().coordinate},
-                {"to", sections.back().coordinate},
-                {"modes", modes},
-                {"exact", exact},
-                {"a", a},
-                {"ends", ends},
-                {"diagonal", d.diagonal},
-                {"model_to_part", oneWay(d.aToB)},
-                {"part_to_model", oneWay(d.bToA)},
-                {"model_storage_bytes", modelBytes},
-                {"part_storage_bytes", partBytes},
-                {"part_triangles", part.triangleCount()},
-                {"part_vertices", part.vertexCount()},
-                {"ms", {{"read", readMs}, {"rebuild", rebuildMs}, {"measure", measureMs}}}};
-      if (loftDistance)
-        j["loft"] = {{"model_to_part", oneWay(loftDistance->aToB)},
-                     {"part_to_model", oneWay(loftDistance->bToA)}};
-      else if (loft)
-        j["loft"] = {{"failed", loftFailure}};
-      std::cout << j.dump(2) << '\n';
-      return 0;
-    }
-    fmt::print(
-        "{}: {} sections along {} from {} to {}, {} modes{}, global C4 chain (a = {}, {} "
-        "ends){}\n",
-        options.name, sections.size(), axis, sections.front().coordinate,
-        sections.back().coordinate, modes, exact ? " + exact remainder" : "", a, ends,
-        outPath.empty() ? "" : " -> " + outPath);
-    fmt::print("part of the mesh: {}, {}, diagonal {:.6g}\n", count(part.vertexCount(), "vertex"),
-               count(part.triangleCount(), "triangle"), d.diagonal);
-    for (const auto& [label, w] :
-         {std::pair{"model -> part", &d.aToB}, std::pair{"part -> model", &d.bToA}})
-      fmt::print("{}  RMS {:.4g} ({})  mean {:.4g} ({})  max {:.4g} ({})\n", label, w->rms,
-                 percent(w->rmsRelative), w->mean, percent(w->meanRelative), w->max,
-                 percent(w->maxRelative));
+  }
+  if (!partPath.empty()) writeMesh(part, partPath);
+  if (!outPath.empty()) writeFileAtomically(outPath, serializeModel(rebuilt.model));
+  const std::size_t modelBytes = storageBytes(rebuilt.model), partBytes = storageBytes(part);
+  if (json) {
+    Json j = {{"mesh", meshPath},
+              {"as", as},
+              {"output", outPath},
+              {"axis", axis},
+              {"sections", sections.size()},
+              {"from", sections.front().coordinate},
+              {"to", sections.back().coordinate},
+              {"modes", modes},
+              {"exact", exact},
+              {"a", a},
+              {"ends", ends},
+              {"diagonal", d.diagonal},
+              {"model_to_part", oneWay(d.aToB)},
+              {"part_to_model", oneWay(d.bToA)},
+              {"model_storage_bytes", modelBytes},
+              {"part_storage_bytes", partBytes},
+              {"part_triangles", part.triangleCount()},
+              {"part_vertices", part.vertexCount()},
+              {"ms", {{"read", readMs}, {"rebuild", rebuildMs}, {"measure", measureMs}}}};
     if (loftDistance)
-      for (const auto& [label, w] : {std::pair{"OCCT loft -> part", &loftDistance->aToB},
-                                     std::pair{"part -> OCCT loft", &loftDistance->bToA}})
-        fmt::print("{}  RMS {:.4g} ({})  mean {:.4g} ({})  max {:.4g} ({})\n", label, w->rms,
-                   percent(w->rmsRelative), w->mean, percent(w->meanRelative), w->max,
-                   percent(w->maxRelative));
+      j["loft"] = {{"model_to_part", oneWay(loftDistance->aToB)},
+                   {"part_to_model", oneWay(loftDistance->bToA)}};
     else if (loft)
-      fmt::print("OCCT loft: failed ({})\n", loftFailure);
-    fmt::print(
-        "storage: model {} bytes, part of the mesh {} bytes ({:.3g}x; numbers to six "
-        "significant digits)\n",
-        modelBytes, partBytes, double(modelBytes) / double(partBytes));
-    fmt::print("(read {:.1f} ms, slice + prepare + fit + solve {:.1f} ms, measure {:.1f} ms)\n",
-               readMs, rebuildMs, measureMs);
+      j["loft"] = {{"failed", loftFailure}};
+    std::cout << j.dump(2) << '\n';
     return 0;
   }
+  fmt::print(
+      "{}: {} sections along {} from {} to {}, {} modes{}, global C4 chain (a = {}, {} "
+      "ends){}\n",
+      options.name, sections.size(), axis, sections.front().coordinate, sections.back().coordinate,
+      modes, exact ? " + exact remainder" : "", a, ends, outPath.empty() ? "" : " -> " + outPath);
+  fmt::print("part of the mesh: {}, {}, diagonal {:.6g}\n", count(part.vertexCount(), "vertex"),
+             count(part.triangleCount(), "triangle"), d.diagonal);
+  printOneWay("model -> part", d.aToB, 4);
+  printOneWay("part -> model", d.bToA, 4);
+  if (loftDistance) {
+    printOneWay("OCCT loft -> part", loftDistance->aToB, 4);
+    printOneWay("part -> OCCT loft", loftDistance->bToA, 4);
+  } else if (loft) {
+    fmt::print("OCCT loft: failed ({})\n", loftFailure);
+  }
+  fmt::print(
+      "storage: model {} bytes, part of the mesh {} bytes ({:.3g}x; numbers to six "
+      "significant digits)\n",
+      modelBytes, partBytes, double(modelBytes) / double(partBytes));
+  fmt::print("(read {:.1f} ms, slice + prepare + fit + solve {:.1f} ms, measure {:.1f} ms)\n",
+             readMs, rebuildMs, measureMs);
+  return 0;
 }
 
 int RebuildCommand::runVertexFrames() const {
@@ -332,7 +316,7 @@ int RebuildCommand::runVertexFrames() const {
     throw RebuildUsageError("--as vertex-frames: give one of --layout QUADS and --grid U V");
 
   auto t0 = Clock::now();
-  const Mesh mesh = readTarget(meshPath);
+  const Mesh mesh = readTriangles(meshPath);
   VertexFrameModel layout;
   if (!args.layoutPath.empty()) {
     layout = quadLayout(readPolygonMesh(args.layoutPath), args.layoutPath);

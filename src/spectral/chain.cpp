@@ -40,17 +40,23 @@ ConditionData zeroDerivative(std::uint32_t k, double t, std::uint32_t modes) {
   return c;
 }
 
-ChainPatch makePatch(const SpectralOperator& op, std::uint32_t modes,
-                     std::vector<ConditionData> conditions, std::uint32_t first,
-                     std::uint32_t last) {
+/// A solved patch as the part of a chain through curves first..last, shown whole.
+ChainPatch chainPatch(SpectralPatch patch, std::uint32_t first, std::uint32_t last) {
   ChainPatch p;
-  p.patch = spectral::solveResolved(op, modes, 0.0, 1.0, std::move(conditions));
+  p.patch = std::move(patch);
   p.firstCurve = first;
   p.lastCurve = last;
   p.shownFirstCurve = first;
   p.shownLastCurve = last;
   p.length = last - first;
   return p;
+}
+
+ChainPatch makePatch(const SpectralOperator& op, std::uint32_t modes,
+                     std::vector<ConditionData> conditions, std::uint32_t first,
+                     std::uint32_t last) {
+  return chainPatch(spectral::solveResolved(op, modes, 0.0, 1.0, std::move(conditions)), first,
+                    last);
 }
 
 /// Multiplies a condition's data (Fourier part and remainder tail) by f.
@@ -220,8 +226,7 @@ void estimateEnd(const std::vector<double>& u, const std::vector<std::uint32_t>&
 ChainPatch hermitePatch(const SpectralOperator& local, std::uint32_t modes,
                         std::vector<ConditionData> cond, const std::vector<PatchMode>& cache,
                         std::uint32_t first) {
-  ChainPatch out;
-  SpectralPatch& patch = out.patch;
+  SpectralPatch patch;
   patch.operator_ = local;
   patch.modes_ = modes;
   patch.uStart_ = 0.0;
@@ -253,10 +258,7 @@ ChainPatch hermitePatch(const SpectralOperator& local, std::uint32_t modes,
   }
   patch.bases_ = std::move(bases);
   spectral::storeConditions(patch, std::move(cond));
-  out.firstCurve = out.shownFirstCurve = first;
-  out.lastCurve = out.shownLastCurve = first + 1;
-  out.length = 1.0;
-  return out;
+  return chainPatch(std::move(patch), first, first + 1);
 }
 
 CrossSectionChain buildGlobalChain(const std::vector<ConditionData>& data,
