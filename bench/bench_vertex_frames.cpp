@@ -71,13 +71,23 @@ const VertexFrameSurface& tessellationSheet() {
 }
 
 /// Tessellation with normals; items = vertices. Fresh: a new Mesh per iteration, allocated,
-/// written and freed, as `pdesurf build` pays it; otherwise into a mesh whose buffers are
-/// reused (the arithmetic and the stores alone).
+/// written and freed, as `pdesurf build` pays it (its large blocks come from the cache of
+/// freed blocks, include/pdesurf/mesh.hpp, as every tessellation but a process's first
+/// does); cold: the same with that cache emptied before each iteration (outside the timing),
+/// as a process's first tessellation pays it; otherwise into a mesh whose buffers are reused
+/// (the arithmetic and the stores alone).
+enum class Buffers { Fresh, Cold, Reused };
 void runTessellate(benchmark::State& state, const VertexFrameSurface& s, std::uint32_t res,
-                   bool fresh) {
+                   Buffers buffers) {
   Mesh reused;
   std::size_t vertices = 0;
+  const bool fresh = buffers != Buffers::Reused;
   for (auto _ : state) {
+    if (buffers == Buffers::Cold) {
+      state.PauseTiming();
+      releaseMeshMemory();
+      state.ResumeTiming();
+    }
     if (fresh) {
       const Mesh mesh = tessellate(s, {res});
       benchmark::DoNotOptimize(mesh.positions.data());
@@ -120,15 +130,29 @@ void runRetessellate(benchmark::State& state, int side, std::uint32_t res) {
 /// The 1,024-frame sheet, tessellated afresh at N = Arg into a new Mesh: allocation, page
 /// faults and freeing included.
 void BM_Tessellate(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), true);
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Fresh);
 }
 BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+/// The same, each mesh on memory new to the process (the first tessellation's cost).
+void BM_TessellateCold(benchmark::State& state) {
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Cold);
+}
+BENCHMARK(BM_TessellateCold)
+    ->Arg(17)
+    ->Arg(33)
+    ->Arg(65)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 /// Fresh tessellation at N = Arg 0 on at most Arg 1 threads (oneTBB): the scaling table.
 void BM_TessellateThreads(benchmark::State& state) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(state.range(1)));
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), true);
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Fresh);
 }
 BENCHMARK(BM_TessellateThreads)
     ->Args({33, 1})
@@ -140,7 +164,8 @@ BENCHMARK(BM_TessellateThreads)
 
 /// The same into a Mesh whose buffers are reused (already mapped): no allocation, no faults.
 void BM_TessellateReused(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), false);
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Reused);
 }
 BENCHMARK(BM_TessellateReused)
     ->Arg(17)
@@ -161,7 +186,7 @@ BENCHMARK(BM_Retessellate)->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(bench
 void BM_TessellateInCache(benchmark::State& state) {
   const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   const VertexFrameSurface s = solve(sheet(static_cast<int>(state.range(0))));
-  runTessellate(state, s, static_cast<std::uint32_t>(state.range(1)), false);
+  runTessellate(state, s, static_cast<std::uint32_t>(state.range(1)), Buffers::Reused);
 }
 BENCHMARK(BM_TessellateInCache)
     ->Args({3, 33})
