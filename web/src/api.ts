@@ -178,6 +178,16 @@ export const api = {
   recover: () => request<Status>('POST', '/api/recover'),
   discardRecovery: () => request<Status>('POST', '/api/discard-recovery'),
 
+  /** The true boundary curves of every patch: float32 [patch][4 sides][samples][xyz]. */
+  async boundaries(samples: number): Promise<{ revision: number; samples: number; xyz: Float32Array }> {
+    const res = await send(`/api/boundaries?samples=${samples}`, 'GET');
+    if (!res.ok) throw await failure(res);
+    const buffer = await res.arrayBuffer();
+    if (buffer.byteLength % (48 * samples) !== 0)
+      throw new ApiError(0, `boundaries: ${buffer.byteLength} bytes, not whole patches of ${samples} samples a side`);
+    return { revision: Number(res.headers.get('X-Revision')), samples, xyz: new Float32Array(buffer) };
+  },
+
   async mesh(options: MeshOptions = {}): Promise<MeshData | MeshDelta> {
     const query = new URLSearchParams();
     if (options.base) query.set('base', String(options.base));

@@ -354,6 +354,61 @@ export class FrameLines {
   }
 }
 
+/** The true boundary curves of the patches (from the server), drawn over the surface; a
+ * selected frame's in the selection colour. */
+export class BoundaryLines {
+  readonly object: THREE.LineSegments;
+  private patches = 0;
+  private perPatch = 0; // line vertices per patch
+
+  constructor(opacity: number) {
+    const material = new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity, depthTest: false });
+    this.object = new THREE.LineSegments(new THREE.BufferGeometry(), material);
+    this.object.renderOrder = 2;
+    this.object.frustumCulled = false;
+  }
+
+  /** Curves as /api/boundaries sends them: [patch][4 sides][samples][xyz]. */
+  set(xyz: Float32Array, samples: number, selected: ReadonlySet<number>): void {
+    const patches = xyz.length / (12 * samples);
+    const perPatch = 4 * (samples - 1) * 2;
+    const positions = new Float32Array(3 * perPatch * patches);
+    let k = 0;
+    for (let p = 0; p < patches; ++p)
+      for (let side = 0; side < 4; ++side) {
+        const base = 3 * ((p * 4 + side) * samples);
+        for (let i = 0; i + 1 < samples; ++i) {
+          positions.set(xyz.subarray(base + 3 * i, base + 3 * i + 6), k);
+          k += 6;
+        }
+      }
+    const g = this.object.geometry;
+    g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    if (this.patches !== patches || this.perPatch !== perPatch)
+      g.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * perPatch * patches), 3));
+    this.patches = patches;
+    this.perPatch = perPatch;
+    this.colour(selected);
+  }
+
+  colour(selected: ReadonlySet<number>): void {
+    const color = this.object.geometry.getAttribute('color') as THREE.BufferAttribute | undefined;
+    if (!color) return;
+    const a = color.array as Float32Array;
+    for (let p = 0; p < this.patches; ++p) {
+      const c = selected.has(p) ? FRAME_SELECTED : FRAME_COLOR;
+      for (let i = p * this.perPatch; i < (p + 1) * this.perPatch; ++i) a.set([c.r, c.g, c.b], 3 * i);
+    }
+    color.needsUpdate = true;
+  }
+
+  clear(): void {
+    this.object.geometry.deleteAttribute('position');
+    this.object.geometry.deleteAttribute('color');
+    this.patches = this.perPatch = 0;
+  }
+}
+
 const HANDLE_VERTEX = /* glsl */ `
 attribute float handleSize;
 attribute vec3 handleColor;
@@ -621,11 +676,15 @@ export type CurvatureMode = 'off' | 'mean' | 'gaussian';
 /** The right view: the shaded surface, zebra stripes or curvature colours on demand,
  * frames overlaid. */
 export class SurfaceView extends Viewport {
-  readonly overlay = new FrameLines(0.55);
+  readonly overlay = new BoundaryLines(0.7);
   readonly mesh: THREE.Mesh;
   private readonly shaded: THREE.Material;
   private readonly zebra: THREE.ShaderMaterial;
   private readonly coloured: THREE.Material;
+  /** The zebra material (tests read its uniforms). */
+  get zebraMaterial(): THREE.ShaderMaterial {
+    return this.zebra;
+  }
   private zebraOn = false;
   private curvature: CurvatureMode = 'off';
   /** The colour scale's half-range of the curvature shown (legend), 0 when off. */
@@ -745,13 +804,15 @@ export class SurfaceView extends Viewport {
     this.invalidate();
   }
 
-  moveOverlayVertex(vertex: number, p: Vec3): void {
-    this.overlay.moveVertex(vertex, p);
+  /** The patches' boundary curves (/api/boundaries), or none. */
+  setBoundaries(curves: { xyz: Float32Array; samples: number } | null, selectedFrames: ReadonlySet<number>): void {
+    if (curves) this.overlay.set(curves.xyz, curves.samples, selectedFrames);
+    else this.overlay.clear();
     this.invalidate();
   }
 
-  updateOverlay(model: Model, selectedFrames: ReadonlySet<number>): void {
-    this.overlay.update(model, selectedFrames);
+  selectOverlay(selectedFrames: ReadonlySet<number>): void {
+    this.overlay.colour(selectedFrames);
     this.invalidate();
   }
 }

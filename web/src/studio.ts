@@ -7,8 +7,12 @@ import type { ModelState } from './api';
 import { $ } from './dom';
 import { MeshSync } from './mesh-sync';
 import { EditPump } from './pump';
+import { previewResolution } from './preview';
 import { FrameView, SurfaceView, modelBox, pointsBox } from './scene';
 import { Store } from './store';
+
+/** Whether gestures show a coarser preview (off with ?preview=0, for comparisons). */
+const PREVIEW = new URLSearchParams(location.search).get('preview') !== '0';
 
 export class Studio {
   readonly store = new Store();
@@ -62,9 +66,15 @@ export class Studio {
     return Number($<HTMLSelectElement>('resolution').value);
   }
 
-  /** The resolution to fetch now: the chosen one, or a coarser preview during a gesture. */
+  /** The resolution to fetch now: the chosen one, or a coarser preview during a gesture
+   * (preview.ts; ?preview=0 turns it off). */
   resolution(): number {
-    return this.fullResolution();
+    const full = this.fullResolution();
+    const mesh = this.store.state.mesh;
+    if (!this.gesture || !PREVIEW || !mesh || mesh.resolution < 2) return full;
+    // The full mesh's triangles, from the mesh shown (triangles grow as (resolution - 1)²).
+    const fullTriangles = mesh.triangleCount * ((full - 1) / (mesh.resolution - 1)) ** 2;
+    return previewResolution(full, fullTriangles);
   }
 
   /** Starts a drag or slider gesture: its edits are one undo group. */
@@ -73,10 +83,13 @@ export class Studio {
     this.pump.begin(kind);
   }
 
-  /** Ends the gesture; resolves when its edits are answered. */
+  /** Ends the gesture; resolves when its edits are answered. A preview gives way to the
+   * full resolution. */
   async endGesture(): Promise<void> {
     this.gesture = false;
     await this.pump.end();
+    const mesh = this.store.state.mesh;
+    if (mesh && mesh.resolution !== this.fullResolution()) this.modelChanged();
   }
 
   live(): boolean {

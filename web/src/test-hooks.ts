@@ -42,5 +42,27 @@ export function installTestHooks(studio: Studio): void {
     }),
     /** The bounding box of the page's surface mesh. */
     meshBox: () => positionsBox(store.state.mesh?.positions),
+    /** Each view's camera: the direction from its target toward it, and the target. */
+    cameras: () =>
+      Object.fromEntries(
+        (['frame', 'surface'] as const).map((name) => {
+          const v = name === 'frame' ? frameView : surfaceView;
+          return [name, { direction: v.viewDirection().toArray(), target: v.controls.target.toArray(), position: v.camera.position.toArray() }];
+        }),
+      ),
+    /** What the surface view shows: its material, zebra settings, curvature scale. */
+    analysis: () => ({
+      material: surfaceView.mesh.material === surfaceView.zebraMaterial ? 'zebra' : (surfaceView.mesh.material as { vertexColors?: boolean }).vertexColors ? 'curvature' : 'shaded',
+      stripes: surfaceView.zebraMaterial.uniforms.stripes.value as number,
+      axis: (surfaceView.zebraMaterial.uniforms.axis.value as { toArray(): number[] }).toArray(),
+      curvatureRange: surfaceView.curvatureRange,
+    }),
+    /** The surface overlay's line vertices (the boundary curves), flat xyz. */
+    overlayPoints: () => {
+      const p = surfaceView.overlay.object.geometry.getAttribute('position');
+      return p ? Array.from(p.array as Float32Array) : [];
+    },
+    /** The page's surface mesh positions, flat xyz. */
+    meshPositions: () => Array.from(store.state.mesh?.positions ?? []),
   };
 }
