@@ -185,6 +185,11 @@ test('views: presets by key and button, fit selection, linked cameras; help list
   for (const key of ['Ctrl+Z', 'Ctrl+S', 'Escape', 'Delete', 'F', '1', '5', 'K', 'Z', 'C', '?'])
     await expect(page.getByTestId('help-keys').locator('kbd', { hasText: new RegExp(`^${key.replace(/[+?]/g, '\\$&')}$`) })).toHaveCount(1);
   await page.screenshot({ path: shot('help.png') });
+  // The user guide's table (docs/studio.md) lists every key the help lists.
+  const guide = readFileSync(path.join(SOURCE_DIR, 'docs', 'studio.md'), 'utf8');
+  const table = guide.slice(guide.indexOf('## Keyboard shortcuts'));
+  for (const key of await page.getByTestId('help-keys').locator('kbd').allTextContents())
+    expect(table, `docs/studio.md lacks ${key}`).toMatch(new RegExp(`[|,] ${key.replace(/[+?]/g, '\\$&')}[ ,]`));
   await page.keyboard.press('Escape');
   await expect(page.getByTestId('help')).toBeHidden();
   // Escape again clears the selection.
