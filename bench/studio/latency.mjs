@@ -331,8 +331,10 @@ async function main() {
       await page.mouse.down();
       for (let j = 1; j <= 3; ++j) { await page.mouse.move(h.x + 3 * j, h.y - 2 * j); await upToDate(); }
       await page.evaluate(() => Object.assign(window.__bench, { finish: true, frames: [], upAt: undefined }));
+      // Without a preview the surface is at full resolution already: nothing to wait for.
+      const previewed = await page.evaluate((r) => window.__studio.state().resolution !== r, full);
       await page.mouse.up();
-      const ms = await page.evaluate((r) => new Promise((resolve) => {
+      const ms = !previewed ? 0 : await page.evaluate((r) => new Promise((resolve) => {
         const T = window.__bench;
         const check = () => {
           const f = T.upAt !== undefined && T.frames.find((x) => x.raf >= T.upAt && x.resolution === r);

@@ -7,6 +7,9 @@
  * SwiftShader (docs/performance.md, "Studio: adaptive preview"): ~20k triangles keep a
  * drag update near 30 ms; 65k (the mug at Res 24) take ~160 ms. */
 export const PREVIEW_TRIANGLE_BUDGET = 20_000;
+/** The pixel density of the surface view during a preview, relative to the screen's: half
+ * as many pixels each way, a quarter of the fill of a software renderer. */
+export const PREVIEW_PIXEL_SCALE = 0.5;
 /** The coarsest preview (samples per patch side): the server's smallest resolution. */
 export const PREVIEW_MIN_RESOLUTION = 2;
 

@@ -118,6 +118,17 @@ export class Viewport {
     this.controls.addEventListener('change', () => this.invalidate());
   }
 
+  private readonly fullPixelRatio = Math.min(window.devicePixelRatio, 2);
+
+  /** Draws at `scale` × the screen's pixel density (a preview during a gesture: a software
+   * renderer's cost grows with the pixels filled), or at full density (scale 1). */
+  setPixelScale(scale: number): void {
+    const ratio = this.fullPixelRatio * scale;
+    if (this.renderer.getPixelRatio() === ratio) return;
+    this.renderer.setPixelRatio(ratio);
+    this.resize();
+  }
+
   resize(): void {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);

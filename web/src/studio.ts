@@ -7,7 +7,7 @@ import type { ModelState } from './api';
 import { $ } from './dom';
 import { MeshSync } from './mesh-sync';
 import { EditPump } from './pump';
-import { previewResolution } from './preview';
+import { PREVIEW_PIXEL_SCALE, previewResolution } from './preview';
 import { FrameView, SurfaceView, modelBox, pointsBox } from './scene';
 import { Store } from './store';
 
@@ -77,19 +77,23 @@ export class Studio {
     return previewResolution(full, fullTriangles);
   }
 
-  /** Starts a drag or slider gesture: its edits are one undo group. */
+  /** Starts a drag or slider gesture: its edits are one undo group. A large surface is
+   * previewed coarser (resolution(): the next mesh) and at a lower pixel density. */
   beginGesture(kind: string): void {
     this.gesture = true;
     this.pump.begin(kind);
+    if (this.resolution() !== this.fullResolution()) this.surfaceView.setPixelScale(PREVIEW_PIXEL_SCALE);
   }
 
   /** Ends the gesture; resolves when its edits are answered. A preview gives way to the
-   * full resolution. */
+   * full resolution at once (the request goes beside the gesture's last edits; the
+   * surface sync fetches again after them). */
   async endGesture(): Promise<void> {
     this.gesture = false;
-    await this.pump.end();
+    this.surfaceView.setPixelScale(1);
     const mesh = this.store.state.mesh;
     if (mesh && mesh.resolution !== this.fullResolution()) this.modelChanged();
+    await this.pump.end();
   }
 
   live(): boolean {
