@@ -25,6 +25,7 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -36,8 +37,10 @@
 
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/atomic_file.hpp"
+#include "pdesurf/cad_export.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
+#include "pdesurf/nurbs.hpp"
 #include "pdesurf/session.hpp"
 #include "pdesurf/spectral_io.hpp"
 // After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers.
@@ -578,6 +581,42 @@ class StudioServer::Impl {
     return spectral_ ? spectralMesh(resolution) : tessellate(session_->surface(), {resolution});
   }
 
+  /// The CAD format a path names (.step .stp .iges .igs), if any.
+  static std::optional<CadFormat> cadFormatOf(const fs::path& path) {
+    try {
+      return cadFormatFromPath(path.string());
+    } catch (const CadError&) {
+      return std::nullopt;
+    }
+  }
+
+  /// Writes the open model as B-spline faces to a STEP or IGES file, as `pdesurf export`
+  /// does (default tolerance); what it wrote, for the page.
+  Json exportCad(const fs::path& path, CadFormat format) {
+    NurbsModel nurbs;
+    try {
+      if (session_)
+        nurbs = toNurbs(session_->surface());
+      else if (const SolvedBSplinePde* b = spectral_->bspline())
+        nurbs = toNurbs(std::span<const BSplineSurface>(b->pieces));
+      else
+        nurbs = toNurbs(spectral_->solved());
+    } catch (const NurbsToleranceError& e) {
+      fail(422, e.what());
+    }
+    CadExportReport report;
+    try {
+      report = writeCad(nurbs, path.string(), format);
+    } catch (const CadError& e) {
+      fail(500, e.what());
+    }
+    return {{"path", relative(path)},
+            {"faces", nurbs.faces.size()},
+            {"exactFaces", nurbs.exactCount()},
+            {"maxDeviation", nurbs.maxDeviation()},
+            {"shells", report.shells}};
+  }
+
   /// The journal: the current model beside its file after every change. A pending
   /// recovery is never overwritten (recover or discard it first).
   void autosave() {
@@ -588,8 +627,10 @@ class StudioServer::Impl {
   void saveTo(const fs::path& path) {
     try {
       // An untransformed spectral model is saved as its file was (save as: a copy).
+      // Fields the editor does not hold ("description", ...) are kept from the file.
       const std::string text =
-          session_ ? serializeVertexFrameModel(session_->model()) : spectralText();
+          session_ ? keepUnknownFields(serializeVertexFrameModel(session_->model()), fileText_)
+                   : spectralText();
       writeFileAtomically(path.string(), text);
       fileText_ = text;
       fileModel_ = session_ ? text : serializeModel(spectral_->model());
@@ -808,6 +849,20 @@ class StudioServer::Impl {
                   res.set_header("X-C0-Gap", fmt::format("{}", gap));
                 }));
 
+    // The true boundary curves of every patch (the surface view's frame overlay): float32
+    // [patch][side v=0, u=1, v=1, u=0][sample][xyz], `samples` points per side.
+    server_.Get("/api/boundaries",
+                guarded([this](const httplib::Request& req, httplib::Response& res) {
+                  requireEditable();
+                  std::uint32_t samples = kDefaultMeshResolution + 1;
+                  if (req.has_param("samples"))
+                    samples = parseUint(req.get_param_value("samples"), kMinResolution,
+                                        kMaxMeshResolution, "samples");
+                  res.set_content(boundaryCurves(session_->surface(solveOptions(req)), samples),
+                                  "application/octet-stream");
+                  res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+                }));
+
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
                   std::vector<std::string> files;
                   std::error_code ec;
@@ -862,11 +917,12 @@ class StudioServer::Impl {
                    const Json body = bodyObject(req);
                    const std::string requested = stringMember(body, "path");
                    const fs::path path = resolve(requested);
+                   const std::optional<CadFormat> cad = cadFormatOf(path);
                    try {
-                     meshFormatFromPath(path.string());
+                     if (!cad) meshFormatFromPath(path.string());
                    } catch (const MeshIoError&) {
-                     fail(400, fmt::format("{}: unknown mesh format (known: .obj .ply .stl .glb "
-                                           ".off)",
+                     fail(400, fmt::format("{}: unknown format (known: .obj .ply .stl .glb .off "
+                                           ".step .stp .iges .igs)",
                                            requested));
                    }
                    std::uint32_t resolution = kDefaultExportResolution;
@@ -881,6 +937,7 @@ class StudioServer::Impl {
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
                    makeParent(path);
+                   if (cad) return sendJson(res, exportCad(path, *cad));
                    const Mesh mesh = exportMesh(resolution);
                    try {
                      writeMesh(mesh, path.string());
@@ -930,6 +987,23 @@ class StudioServer::Impl {
     out += 12 * v;
     std::memcpy(out, mesh.indices.data(), 12 * t);
     res.set_content(std::move(body), "application/octet-stream");
+  }
+
+  /// The four sides of each patch of `surface` (its parameter square's edges, in the
+  /// order v = 0, u = 1, v = 1, u = 0), `samples` points each, as little-endian float32.
+  static std::string boundaryCurves(const VertexFrameSurface& surface, std::uint32_t samples) {
+    std::vector<float> out;
+    out.reserve(std::size_t{12} * samples * surface.patches.size());
+    for (const VertexFramePatch& patch : surface.patches)
+      for (int side = 0; side < 4; ++side)
+        for (std::uint32_t i = 0; i < samples; ++i) {
+          const double t = static_cast<double>(i) / (samples - 1);
+          const double u = side == 0 ? t : side == 1 ? 1.0 : side == 2 ? 1.0 - t : 0.0;
+          const double v = side == 0 ? 0.0 : side == 1 ? t : side == 2 ? 1.0 : 1.0 - t;
+          const Vec3 p = patch.position(u, v);
+          for (int c = 0; c < 3; ++c) out.push_back(static_cast<float>(p[c]));
+        }
+    return std::string(reinterpret_cast<const char*>(out.data()), 4 * out.size());
   }
 
   /// Same vertex count and triangles: a delta of positions and normals can update it.

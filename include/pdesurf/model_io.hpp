@@ -39,4 +39,11 @@ VertexFrameModel loadVertexFrameModel(const std::string& path);
 /// (numbers written shortest round-trip; defaults omitted).
 std::string serializeVertexFrameModel(const VertexFrameModel& model);
 
+/// `written` (serializeVertexFrameModel's text) with the fields of `original` (the file it
+/// was read from) that the model does not hold: top-level fields other than type, name,
+/// vertices, frames and forces ("description", a tool's own data), and, when both have as
+/// many frames, each frame's fields other than vertices, a1, a2 and forces; in the
+/// original's key order. `written` unchanged when `original` is not a JSON object.
+std::string keepUnknownFields(const std::string& written, std::string_view original);
+
 }  // namespace pdesurf
