@@ -151,7 +151,8 @@ int run(const Args& args) {
   double spent = 0.0;
   const double finest = *std::min_element(args.levels.begin(), args.levels.end());
   for (std::uint32_t n : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 10u, 12u, 14u, 16u, 20u, 24u, 28u, 32u}) {
-    if (args.layout != "tube" && n < 2) continue;
+    // A grid needs 2 frames a side to bend; a torus 3 rows (2 would repeat their edges).
+    if ((args.layout == "grid" && n < 2) || (args.layout == "torus" && n < 3)) continue;
     auto layout = makeLayout(n);
     if (!layout) break;
     Candidate c;

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "fit/lattice_frame.hpp"
 #include "pdesurf/rebuild.hpp"
 #include "pdesurf/section_rebuild.hpp"
 #include "pdesurf/sections.hpp"
@@ -90,13 +91,8 @@ TubeLayout tubeLayout(const Mesh& mesh, const TubeLayoutOptions& options,
     return v;
   };
   for (std::uint32_t r = 0; r < options.rings; ++r)
-    for (std::uint32_t s = 0; s < options.sectors; ++s) {
-      const std::uint32_t j = 2 * s, i = 2 * r;
-      Frame f;
-      f.vertices = {at(j, i),         at(j + 1, i),     at(j + 2, i), at(j + 2, i + 1),
-                    at(j + 2, i + 2), at(j + 1, i + 2), at(j, i + 2), at(j, i + 1)};
-      model.frames.push_back(f);
-    }
+    for (std::uint32_t s = 0; s < options.sectors; ++s)
+      model.frames.push_back(detail::latticeFrame(at, 2 * s, 2 * r));
   out.part = sectionedPart(mesh, slice.axis, out.sections);
   return out;
 }
