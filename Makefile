@@ -62,7 +62,7 @@ bench: build
 # The accuracy-versus-storage benchmark: writes docs/accuracy-storage.md and its images.
 accuracy: build
 	scripts/setup accuracy
-	PDESURF_BUILD=$(BUILD) scripts/accuracy
+	PDESURF_BUILD=$(BUILD) scripts/accuracy --jobs 2
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
