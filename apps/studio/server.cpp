@@ -37,9 +37,9 @@
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/atomic_file.hpp"
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
-#include "pdesurf/spectral_io.hpp"
 // After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers.
 #include <httplib.h>
 
@@ -420,44 +420,33 @@ class StudioServer::Impl {
   // ------------------------------------------------------------------------------------
   // The session
 
-  std::uint64_t revision() const {
-    return base_ + (session_ ? session_->revision() : spectral_ ? spectral_->revision() : 0);
-  }
+  std::uint64_t revision() const { return base_ + (session_ ? session_->revision() : 0); }
 
   Json status() const {
     return {{"revision", revision()},
-            {"undo", session_ ? session_->undoDepth() : spectral_->undoDepth()},
-            {"redo", session_ ? session_->redoDepth() : spectral_->redoDepth()},
+            {"undo", session_->undoDepth()},
+            {"redo", session_->redoDepth()},
             {"dirty", revision() != savedRevision_}};
   }
 
-  /// Edits other than whole-model transforms need a vertex-frame session; spectral and
-  /// cross-section models are shown, moved, turned, scaled, exported and saved, but their
-  /// curves are not edited (yet).
+  /// Edits other than whole-model transforms need a model with editable parts (vertex
+  /// frames); the other types are shown, moved, turned, scaled, exported and saved, but their
+  /// curves and nets are not edited (yet).
   void requireEditable() const {
-    if (!session_)
+    if (!session_->editable())
       fail(409, fmt::format("{} models are view-only in the studio: edit the file, then open it "
                             "again (whole-model transforms work: POST /api/transform)",
-                            spectral_->solved().type));
+                            modelTypeName(session_->model())));
   }
 
   /// The open model, whatever its type (a copy: for the journal).
-  AnyModel currentModel() const {
-    return session_ ? AnyModel(session_->model()) : spectral_->model();
-  }
+  AnyModel currentModel() const { return session_->model(); }
 
-  /// Replaces the session with `model` (solving a spectral one first: it throws
+  /// Replaces the session with `model` (solving one without editable parts first: it throws
   /// ModelError before anything changes); the revision keeps increasing across sessions.
   void replaceSession(AnyModel model, const std::string& source) {
     const std::uint64_t next = opened_ ? revision() + 1 : 0;
-    if (auto* frames = std::get_if<VertexFrameModel>(&model)) {
-      session_ = std::make_unique<ModelSession>(std::move(*frames));
-      spectral_.reset();
-    } else {
-      auto spectral = std::make_unique<SpectralSession>(std::move(model), source);
-      session_.reset();
-      spectral_ = std::move(spectral);
-    }
+    session_ = std::make_unique<ModelSession>(std::move(model), source);
     base_ = next;
     opened_ = true;
   }
@@ -486,97 +475,46 @@ class StudioServer::Impl {
     }
   }
 
-  /// The current spectral model as its file says when it is the model read or saved last
-  /// (so an untransformed model is shown, saved and copied exactly as written), else as
-  /// serializeModel writes it.
-  std::string spectralText() const {
-    std::string text = serializeModel(spectral_->model());
-    return text == fileModel_ ? fileText_ : text;
+  /// The current model as its file says when it is the model read or saved last (so an
+  /// untransformed view-only model is shown, saved and copied exactly as written), else as
+  /// serializeModel writes it. A model with editable parts is always written by
+  /// serializeModel.
+  std::string modelText() const {
+    std::string text = serializeModel(session_->model());
+    return session_->editable() || text != fileModel_ ? text : fileText_;
   }
 
-  /// What the frame view draws for a view-only model: each patch's position curves and its
-  /// spine, as polylines (closed curves sampled at kViewCurveSamples v).
-  Json viewCurves() const {
-    constexpr std::uint32_t kViewCurveSamples = 96, kViewSpineSamples = 65;
-    Json curves = Json::array(), spines = Json::array();
-    if (const SolvedBSplinePde* b = spectral_->bspline()) {
-      // A B-spline model: the control polygon of each piece, its rows and its columns.
-      for (const BSplineSurface& piece : b->pieces) {
-        const ControlNet& net = piece.net();
-        for (int direction = 0; direction < 2; ++direction) {
-          const std::uint32_t lines = direction == 0 ? net.nu : net.nv;
-          const std::uint32_t along = direction == 0 ? net.nv : net.nu;
-          for (std::uint32_t a = 0; a <= lines; ++a) {
-            Json line = Json::array();
-            for (std::uint32_t k = 0; k <= along; ++k) {
-              const Vec3& q = direction == 0 ? net(a, k) : net(k, a);
-              line.push_back({q.x(), q.y(), q.z()});
-            }
-            curves.push_back(std::move(line));
-          }
-        }
-      }
-      return {{"curves", std::move(curves)}, {"spines", std::move(spines)}};
-    }
-    const SolvedSpectral& s = spectral_->solved();
-    for (std::size_t k = 0; k < s.patchCount(); ++k) {
-      const SpectralPatch& p = s.patchAt(k);
-      const auto [u0, u1] = s.range(k);
-      for (const auto& c : p.conditions()) {
-        if (c.derivative != 0 || c.u < std::min(u0, u1) - 1e-12 || c.u > std::max(u0, u1) + 1e-12)
-          continue;
+  /// What the frame view draws for a view-only model (overlay()): polylines as JSON.
+  Json viewCurves() {
+    const ModelOverlay view = overlay(session_->solved());
+    const auto lines = [](const std::vector<std::vector<Vec3>>& polylines) {
+      Json out = Json::array();
+      for (const std::vector<Vec3>& polyline : polylines) {
         Json line = Json::array();
-        for (std::uint32_t j = 0; j < kViewCurveSamples; ++j) {
-          const Vec3 q = p.position(c.u, 2.0 * std::numbers::pi * j / kViewCurveSamples);
-          line.push_back({q.x(), q.y(), q.z()});
-        }
-        curves.push_back(std::move(line));
+        for (const Vec3& q : polyline) line.push_back({q.x(), q.y(), q.z()});
+        out.push_back(std::move(line));
       }
-      Json spine = Json::array();
-      for (std::uint32_t i = 0; i < kViewSpineSamples; ++i) {
-        const Vec3 q = p.spine(u0 + (u1 - u0) * i / (kViewSpineSamples - 1.0));
-        spine.push_back({q.x(), q.y(), q.z()});
-      }
-      spines.push_back(std::move(spine));
-    }
-    return {{"curves", std::move(curves)}, {"spines", std::move(spines)}};
+      return out;
+    };
+    return {{"curves", lines(view.curves)}, {"spines", lines(view.spines)}};
   }
 
-  /// The surface mesh of whatever model is open, for the page: vertex frames through the
-  /// Tessellator (a drag keeps the topology, so only positions and normals are rewritten).
+  /// The surface mesh of whatever model is open, for the page, through the ModelTessellator
+  /// (a drag keeps the topology, so only positions and normals are rewritten).
   const Mesh& meshOf(std::uint32_t resolution, const SolveOptions& options, double& solveMs,
                      double& tessMs, double& gap) {
-    if (spectral_) {
-      auto t0 = Clock::now();
-      viewMesh_ = spectralMesh(resolution);
-      tessMs = msSince(t0);
-      solveMs = 0.0;  // solved when opened or transformed
-      gap = 0.0;
-      if (spectral_->solved().chain)
-        for (const JointGap& g : measureJointGaps(*spectral_->solved().chain))
-          gap = std::max(gap, g.c0);
-      return viewMesh_;
-    }
     auto t0 = Clock::now();
-    const VertexFrameSurface& surface = session_->surface(options);
+    const SolvedModel& solved = session_->solved(options);  // view-only: solved when changed
     solveMs = msSince(t0);
     t0 = Clock::now();
-    const Mesh& mesh = tessellator_.tessellate(surface, {resolution});
+    const Mesh& mesh = tessellator_.tessellate(solved, {resolution});
     tessMs = msSince(t0);
-    gap = measureC0Gap(surface).maxGap;
+    gap = largestC0Gap(solved);
     return mesh;
   }
 
-  /// The mesh of the open spectral, cross-section or bspline-pde model.
-  Mesh spectralMesh(std::uint32_t resolution) const {
-    if (const SolvedBSplinePde* b = spectral_->bspline()) return tessellate(*b, resolution);
-    return tessellate(spectral_->solved(), resolution);
-  }
-
   /// A mesh for a file (export), leaving the page's tessellation cache alone.
-  Mesh exportMesh(std::uint32_t resolution) {
-    return spectral_ ? spectralMesh(resolution) : tessellate(session_->surface(), {resolution});
-  }
+  Mesh exportMesh(std::uint32_t resolution) { return tessellate(session_->solved(), {resolution}); }
 
   /// The journal: the current model beside its file after every change. A pending
   /// recovery is never overwritten (recover or discard it first).
@@ -587,12 +525,11 @@ class StudioServer::Impl {
 
   void saveTo(const fs::path& path) {
     try {
-      // An untransformed spectral model is saved as its file was (save as: a copy).
-      const std::string text =
-          session_ ? serializeVertexFrameModel(session_->model()) : spectralText();
+      // An untransformed view-only model is saved as its file was (save as: a copy).
+      const std::string text = modelText();
       writeFileAtomically(path.string(), text);
       fileText_ = text;
-      fileModel_ = session_ ? text : serializeModel(spectral_->model());
+      fileModel_ = serializeModel(session_->model());
     } catch (const std::exception& e) {
       fail(500, e.what());
     }
@@ -614,8 +551,8 @@ class StudioServer::Impl {
       else if (s != "global")
         fail(400, fmt::format("solver: expected \"global\" or \"local\", found \"{}\"", s));
     }
-    if (req.has_param("seed") && session_) {
-      const auto frames = static_cast<std::uint32_t>(session_->model().frames.size());
+    if (req.has_param("seed") && session_->editable()) {
+      const auto frames = static_cast<std::uint32_t>(session_->frames()->frames.size());
       o.seedFrame = parseUint(req.get_param_value("seed"), 0, frames - 1, "seed");
     }
     return o;
@@ -720,19 +657,15 @@ class StudioServer::Impl {
                   Json out = status();
                   out["path"] = relative(path_);
                   out["recovery"] = recovery_;
-                  out["editable"] = session_ != nullptr;
-                  if (session_) {
-                    out["model"] = Json::parse(serializeVertexFrameModel(session_->model()));
-                  } else {
-                    out["model"] = Json::parse(spectralText());
-                    out["view"] = viewCurves();
-                  }
+                  out["editable"] = session_->editable();
+                  out["model"] = Json::parse(modelText());
+                  if (!session_->editable()) out["view"] = viewCurves();
                   sendJson(res, out);
                 }));
 
     server_.Post("/api/edit", guarded([this](const httplib::Request& req, httplib::Response& res) {
                    requireEditable();
-                   const GroupedEdit edit = parseEdit(req.body, session_->model());
+                   const GroupedEdit edit = parseEdit(req.body, *session_->frames());
                    session_->apply(edit.edit, edit.group);
                    autosave();
                    sendJson(res, status());
@@ -741,13 +674,7 @@ class StudioServer::Impl {
     // Moves, turns or scales the whole model, of any type: one undo step.
     server_.Post("/api/transform",
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
-                   const AffineMap map = parseTransform(req.body);
-                   if (session_) {
-                     checkTransform(session_->model(), map);
-                     session_->apply(TransformModel{map});
-                   } else {
-                     spectral_->transform(map);
-                   }
+                   session_->transform(parseTransform(req.body));
                    autosave();
                    sendJson(res, status());
                  }));
@@ -759,15 +686,13 @@ class StudioServer::Impl {
                  }));
 
     server_.Post("/api/undo", guarded([this](const httplib::Request&, httplib::Response& res) {
-                   if (!(session_ ? session_->undo() : spectral_->undo()))
-                     fail(409, "nothing to undo");
+                   if (!session_->undo()) fail(409, "nothing to undo");
                    autosave();
                    sendJson(res, status());
                  }));
 
     server_.Post("/api/redo", guarded([this](const httplib::Request&, httplib::Response& res) {
-                   if (!(session_ ? session_->redo() : spectral_->redo()))
-                     fail(409, "nothing to redo");
+                   if (!session_->redo()) fail(409, "nothing to redo");
                    autosave();
                    sendJson(res, status());
                  }));
@@ -787,19 +712,16 @@ class StudioServer::Impl {
                   const SolveOptions options = solveOptions(req);
                   double solveMs = 0, tessMs = 0, gap = 0;
                   const Mesh& mesh = meshOf(resolution, options, solveMs, tessMs, gap);
-                  // Same triangles: for vertex frames the Tessellator's layout says so
-                  // without comparing the index buffers (the drag's hot path).
-                  const std::uint64_t layout = spectral_ ? 0 : tessellator_.layoutVersion();
-                  const bool sameTriangles =
-                      spectral_ ? sameTopology(sent_, mesh) : layout == sentLayout_ && !sentView_;
-                  const bool delta = base != 0 && base == sentId_ && sameTriangles;
+                  // Same triangles: the tessellator's layout says so (for vertex frames
+                  // without comparing the index buffers: the drag's hot path).
+                  const std::uint64_t layout = tessellator_.layoutVersion();
+                  const bool delta = base != 0 && base == sentId_ && layout == sentLayout_;
                   if (delta)
                     sendMeshDelta(res, sent_, mesh, revision(), resolution);
                   else
                     sendMesh(res, mesh, revision(), resolution);
                   sent_ = mesh;  // what the client now has (copies reuse sent_'s buffers)
                   sentLayout_ = layout;
-                  sentView_ = spectral_ != nullptr;
                   sentId_ = ++meshCounter_;
                   if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
                   res.set_header("X-Mesh-Id", std::to_string(sentId_));
@@ -932,12 +854,6 @@ class StudioServer::Impl {
     res.set_content(std::move(body), "application/octet-stream");
   }
 
-  /// Same vertex count and triangles: a delta of positions and normals can update it.
-  static bool sameTopology(const Mesh& a, const Mesh& b) {
-    return a.positions.size() == b.positions.size() && a.normals.size() == b.normals.size() &&
-           a.indices == b.indices;
-  }
-
   /// The vertices whose position or normal differ between `from` and `to` (same topology),
   /// as runs [start, start + count); runs closer than kDeltaRunGap vertices are merged (a
   /// few unchanged vertices cost less than a run).
@@ -1014,15 +930,11 @@ class StudioServer::Impl {
   bool recovery_ = false;
   // The last mesh sent (GET /api/mesh) and its id; ids are never reused while the server
   // runs, so a client's `base` names exactly one mesh, across opened models too.
-  Tessellator tessellator_;       // the page's vertex-frame meshes
-  Mesh viewMesh_;                 // the page's mesh of a view-only model
+  ModelTessellator tessellator_;  // the page's meshes
   Mesh sent_;                     // the last mesh sent (the base of a delta)
-  std::uint64_t sentLayout_ = 0;  // the Tessellator layout of sent_ (vertex frames)
-  bool sentView_ = false;         // sent_ is a view-only model's mesh
-  /// Set when a spectral or cross-section model is open (then session_ is null).
-  std::unique_ptr<SpectralSession> spectral_;
-  std::string fileText_;   ///< the model's file as read or saved last
-  std::string fileModel_;  ///< serializeModel of that file's model
+  std::uint64_t sentLayout_ = 0;  // the tessellator's layout of sent_
+  std::string fileText_;          ///< the model's file as read or saved last
+  std::string fileModel_;         ///< serializeModel of that file's model
   bool opened_ = false;
   Journal journal_;
   std::uint64_t sentId_ = 0;
