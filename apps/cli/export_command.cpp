@@ -9,7 +9,7 @@
 
 #include "cli_common.hpp"
 #include "pdesurf/cad_export.hpp"
-#include "pdesurf/model.hpp"
+#include "pdesurf/model_io.hpp"
 #include "pdesurf/nurbs.hpp"
 
 namespace pdesurf::cli {

@@ -2,10 +2,14 @@
 // Exit codes: 0 success, 1 bad input (model or mesh file), 2 usage error.
 #include <csignal>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -246,12 +250,12 @@ struct FitCommand {
   std::vector<std::uint32_t> terms;
   bool uniform = false, json = false;
 
+  static constexpr const char* kHelp =
+      "Fit each closed curve of a curves file (a cross-sections model or {\"curves\": [...]}) by "
+      "a Fourier series; print the largest and mean distance of the points per number of terms";
+
   CLI::App* add(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand(
-        "fit",
-        "Fit each closed curve of a curves file (a cross-sections model or {\"curves\": [...]}) "
-        "by a Fourier series; print the largest and mean distance of the points per number of "
-        "terms");
+    CLI::App* cmd = app.add_subcommand("fit", kHelp);
     cmd->add_option("curves", curvesPath, "curves file (JSON)")->required();
     cmd->add_option("--terms", terms, "numbers of Fourier terms N (one or more)")
         ->required()
@@ -554,29 +558,16 @@ int main(int argc, char** argv) {
                  "the output is the same for any number")
       ->check(CLI::Range(0u, 4096u));
 
-  BuildCommand buildCommand;
-  CLI::App* build = buildCommand.add(app);
-  SampleCommand sampleCommand;
-  CLI::App* sample = sampleCommand.add(app);
-  InfoCommand infoCommand;
-  CLI::App* info = infoCommand.add(app);
-  StudioCommand studioCommand;
-  CLI::App* studio = studioCommand.add(app);
-  FitCommand fitCommand;
-  CLI::App* fit = fitCommand.add(app);
-  SpineCommand spineCommand;
-  CLI::App* spine = spineCommand.add(app);
-  CoonsCommand coonsCommand;
-  CLI::App* coons = coonsCommand.add(app);
-
-  SliceCommand sliceCommand;
-  CLI::App* slice = sliceCommand.add(app);
-  CompareCommand compareCommand;
-  CLI::App* compare = compareCommand.add(app);
-  cli::ExportCommand exportCommand;
-  CLI::App* exportCmd = exportCommand.add(app);
-  cli::RebuildCommand rebuildCommand;
-  CLI::App* rebuild = rebuildCommand.add(app);
+  // Every command, in the order --help lists them, and what runs the one given.
+  std::tuple<BuildCommand, SampleCommand, InfoCommand, StudioCommand, FitCommand, SpineCommand,
+             CoonsCommand, SliceCommand, CompareCommand, cli::ExportCommand, cli::RebuildCommand>
+      commands;
+  std::vector<std::pair<CLI::App*, std::function<int()>>> registered;
+  std::apply(
+      [&](auto&... command) {
+        (registered.emplace_back(command.add(app), [&command] { return command.run(); }), ...);
+      },
+      commands);
 
   try {
     app.parse(argc, argv);
@@ -596,17 +587,8 @@ int main(int argc, char** argv) {
   if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
   try {
-    if (*build) return buildCommand.run();
-    if (*sample) return sampleCommand.run();
-    if (*studio) return studioCommand.run();
-    if (*slice) return sliceCommand.run();
-    if (*coons) return coonsCommand.run();
-    if (*fit) return fitCommand.run();
-    if (*spine) return spineCommand.run();
-    if (*compare) return compareCommand.run();
-    if (*exportCmd) return exportCommand.run();
-    if (*rebuild) return rebuildCommand.run();
-    if (*info) return infoCommand.run();
+    for (const auto& [command, run] : registered)
+      if (*command) return run();
     return kExitUsage;  // require_subcommand(1): not reached
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

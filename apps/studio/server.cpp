@@ -34,12 +34,16 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "pdesurf/analysis.hpp"
+#include "http_error.hpp"
+#include "journal.hpp"
+#include "mesh_wire.hpp"
 #include "pdesurf/atomic_file.hpp"
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
+#include "root_sandbox.hpp"
 // After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers.
 #include <httplib.h>
 
@@ -103,14 +107,6 @@ std::string urlHost(const std::string& host) {
   return host.find(':') != std::string::npos ? "[" + host + "]" : host;
 }
 
-/// A request that cannot be served: the status and the message of {"error": ...}.
-struct HttpError {
-  int status;
-  std::string message;
-};
-
-[[noreturn]] void fail(int status, std::string message) { throw HttpError{status, message}; }
-
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
@@ -122,8 +118,6 @@ std::string readFile(const fs::path& path) {
   text << in.rdbuf();
   return text.str();
 }
-
-fs::path autosavePath(const fs::path& model) { return fs::path(model.string() + ".autosave"); }
 
 void sendJson(httplib::Response& res, const Json& body, int status = 200) {
   res.status = status;
@@ -186,79 +180,6 @@ std::string defaultWebDir() {
   return (fs::path(__FILE__).parent_path().parent_path().parent_path() / "web" / "dist").string();
 }
 
-/// Writes the autosave journal on its own thread, so an edit's answer never waits for the
-/// serialisation and the disk. Only the latest model matters: a snapshot still pending when
-/// a newer one arrives is replaced. Writes are atomic (temporary file, then rename).
-class Journal {
- public:
-  Journal() : thread_([this] { run(); }) {}
-  ~Journal() {
-    {
-      std::lock_guard lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();  // run() writes what is pending before it returns
-  }
-  Journal(const Journal&) = delete;
-  Journal& operator=(const Journal&) = delete;
-
-  void write(fs::path path, AnyModel model) {
-    {
-      std::lock_guard lock(mutex_);
-      pending_.emplace(Job{std::move(path), std::move(model)});
-    }
-    wake_.notify_all();
-  }
-
-  /// Drops a pending write and waits for one in progress: afterwards no journal file is
-  /// written until the next write() (call before removing or reading a journal).
-  void cancel() {
-    std::unique_lock lock(mutex_);
-    pending_.reset();
-    idle_.wait(lock, [this] { return !busy_; });
-  }
-
-  /// Waits until every write asked for is on disk.
-  void flush() {
-    std::unique_lock lock(mutex_);
-    idle_.wait(lock, [this] { return !busy_ && !pending_; });
-  }
-
- private:
-  struct Job {
-    fs::path path;
-    AnyModel model;
-  };
-
-  void run() {
-    std::unique_lock lock(mutex_);
-    for (;;) {
-      wake_.wait(lock, [this] { return stop_ || pending_; });
-      if (!pending_) return;  // stopping, nothing left to write
-      Job job = std::move(*pending_);
-      pending_.reset();
-      busy_ = true;
-      lock.unlock();
-      try {
-        writeFileAtomically(job.path.string(), serializeModel(job.model));
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
-      }
-      lock.lock();
-      busy_ = false;
-      idle_.notify_all();
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_, idle_;
-  std::optional<Job> pending_;
-  bool busy_ = false;
-  bool stop_ = false;
-  std::thread thread_;  // last: started once the members above exist
-};
-
 class StudioServer::Impl {
  public:
   Impl(const std::string& modelPath, StudioOptions options)
@@ -271,11 +192,11 @@ class StudioServer::Impl {
     const fs::path root = options_.root.empty() ? model.parent_path() : fs::path(options_.root);
     if (!fs::is_directory(root, ec))
       throw StudioError(fmt::format("--root {}: not a folder", root.string()));
-    root_ = fs::canonical(root, ec);
+    sandbox_ = RootSandbox(fs::canonical(root, ec));
     if (ec) throw StudioError(fmt::format("--root {}: {}", root.string(), ec.message()));
-    if (!inside(model))
-      throw StudioError(
-          fmt::format("{}: the model is outside the root folder {}", modelPath, root_.string()));
+    if (!sandbox_.inside(model))
+      throw StudioError(fmt::format("{}: the model is outside the root folder {}", modelPath,
+                                    sandbox_.root().string()));
     openModel(model, modelPath);
     routes();
   }
@@ -312,7 +233,7 @@ class StudioServer::Impl {
                        token_.empty() ? "" : "?token=" + token_);
   }
   const std::string& token() const { return token_; }
-  std::string root() const { return root_.string(); }
+  std::string root() const { return sandbox_.root().string(); }
   std::string webDir() const { return webDir_.string(); }
   std::string modelPath() const {
     std::lock_guard lock(mutex_);
@@ -382,39 +303,6 @@ class StudioServer::Impl {
                                           req.method, type.empty() ? "none" : quoted(type))};
     }
     return std::nullopt;
-  }
-
-  // ------------------------------------------------------------------------------------
-  // Paths
-
-  bool inside(const fs::path& canonical) const {
-    auto [r, c] = std::mismatch(root_.begin(), root_.end(), canonical.begin(), canonical.end());
-    return r == root_.end();
-  }
-
-  /// A path from a request, resolved against the root; 403 when it leaves the root.
-  fs::path resolve(const std::string& requested) const {
-    if (requested.empty()) fail(400, "$.path: empty path");
-    if (requested.find('\0') != std::string::npos) fail(400, "$.path: contains a NUL character");
-    fs::path p(requested);
-    if (p.is_relative()) p = root_ / p;
-    std::error_code ec;
-    fs::path canonical = fs::weakly_canonical(p, ec);
-    if (ec) fail(400, fmt::format("{}: {}", requested, ec.message()));
-    if (!inside(canonical) || canonical == root_)
-      fail(403, fmt::format("{}: outside the root folder", requested));
-    return canonical;
-  }
-
-  std::string relative(const fs::path& p) const {
-    return p.lexically_relative(root_).generic_string();
-  }
-
-  /// Makes the parent folder of a path inside the root.
-  void makeParent(const fs::path& p) const {
-    std::error_code ec;
-    fs::create_directories(p.parent_path(), ec);
-    if (ec) fail(500, fmt::format("{}: cannot create the folder: {}", relative(p), ec.message()));
   }
 
   // ------------------------------------------------------------------------------------
@@ -655,7 +543,7 @@ class StudioServer::Impl {
 
     server_.Get("/api/model", guarded([this](const httplib::Request&, httplib::Response& res) {
                   Json out = status();
-                  out["path"] = relative(path_);
+                  out["path"] = sandbox_.relative(path_);
                   out["recovery"] = recovery_;
                   out["editable"] = session_->editable();
                   out["model"] = Json::parse(modelText());
@@ -716,10 +604,9 @@ class StudioServer::Impl {
                   // without comparing the index buffers: the drag's hot path).
                   const std::uint64_t layout = tessellator_.layoutVersion();
                   const bool delta = base != 0 && base == sentId_ && layout == sentLayout_;
-                  if (delta)
-                    sendMeshDelta(res, sent_, mesh, revision(), resolution);
-                  else
-                    sendMesh(res, mesh, revision(), resolution);
+                  res.set_content(delta ? encodeMeshDelta(sent_, mesh, revision(), resolution)
+                                        : encodeMesh(mesh, revision(), resolution),
+                                  "application/octet-stream");
                   sent_ = mesh;  // what the client now has (copies reuse sent_'s buffers)
                   sentLayout_ = layout;
                   sentId_ = ++meshCounter_;
@@ -734,24 +621,24 @@ class StudioServer::Impl {
                   std::vector<std::string> files;
                   std::error_code ec;
                   fs::recursive_directory_iterator it(
-                      root_, fs::directory_options::skip_permission_denied, ec);
+                      sandbox_.root(), fs::directory_options::skip_permission_denied, ec);
                   for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
                     if (it->path().extension() == ".json" && it->is_regular_file(ec))
-                      files.push_back(relative(it->path()));
+                      files.push_back(sandbox_.relative(it->path()));
                   std::sort(files.begin(), files.end());
                   sendJson(res, {{"files", files}});
                 }));
 
     server_.Post("/api/open", guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const std::string requested = stringMember(bodyObject(req), "path");
-                   const fs::path path = resolve(requested);
+                   const fs::path path = sandbox_.resolve(requested);
                    std::error_code ec;
                    if (!fs::exists(path, ec)) fail(404, fmt::format("{}: no such file", requested));
                    if (!fs::is_regular_file(path, ec))
                      fail(400, fmt::format("{}: not a file", requested));
-                   openModel(path, relative(path));
+                   openModel(path, sandbox_.relative(path));
                    Json out = status();
-                   out["path"] = relative(path_);
+                   out["path"] = sandbox_.relative(path_);
                    out["recovery"] = recovery_;
                    sendJson(res, out);
                  }));
@@ -759,23 +646,23 @@ class StudioServer::Impl {
     server_.Post("/api/save", guarded([this](const httplib::Request&, httplib::Response& res) {
                    saveTo(path_);
                    Json out = status();
-                   out["path"] = relative(path_);
+                   out["path"] = sandbox_.relative(path_);
                    sendJson(res, out);
                  }));
 
     server_.Post("/api/save-as",
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const std::string requested = stringMember(bodyObject(req), "path");
-                   const fs::path path = resolve(requested);
+                   const fs::path path = sandbox_.resolve(requested);
                    if (path.extension() != ".json")
                      fail(400, fmt::format("{}: a model file ends in .json", requested));
                    std::error_code ec;
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
-                   makeParent(path);
+                   sandbox_.makeParent(path);
                    saveTo(path);
                    Json out = status();
-                   out["path"] = relative(path_);
+                   out["path"] = sandbox_.relative(path_);
                    sendJson(res, out);
                  }));
 
@@ -783,7 +670,7 @@ class StudioServer::Impl {
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const Json body = bodyObject(req);
                    const std::string requested = stringMember(body, "path");
-                   const fs::path path = resolve(requested);
+                   const fs::path path = sandbox_.resolve(requested);
                    try {
                      meshFormatFromPath(path.string());
                    } catch (const MeshIoError&) {
@@ -802,14 +689,14 @@ class StudioServer::Impl {
                    std::error_code ec;
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
-                   makeParent(path);
+                   sandbox_.makeParent(path);
                    const Mesh mesh = exportMesh(resolution);
                    try {
                      writeMesh(mesh, path.string());
                    } catch (const MeshIoError& e) {
                      fail(500, e.what());
                    }
-                   sendJson(res, {{"path", relative(path)},
+                   sendJson(res, {{"path", sandbox_.relative(path)},
                                   {"vertices", mesh.vertexCount()},
                                   {"triangles", mesh.triangleCount()}});
                  }));
@@ -817,8 +704,8 @@ class StudioServer::Impl {
     server_.Post("/api/recover", guarded([this](const httplib::Request&, httplib::Response& res) {
                    if (!recovery_) fail(409, "no autosave to recover");
                    const fs::path journal = autosavePath(path_);
-                   replaceSession(parseModel(readFile(journal), relative(journal)),
-                                  relative(journal));
+                   replaceSession(parseModel(readFile(journal), sandbox_.relative(journal)),
+                                  sandbox_.relative(journal));
                    recovery_ = false;  // the journal now matches the session
                    sendJson(res, status());
                  }));
@@ -834,89 +721,11 @@ class StudioServer::Impl {
                  }));
   }
 
-  static void sendMesh(httplib::Response& res, const Mesh& mesh, std::uint64_t revision,
-                       std::uint32_t resolution) {
-    static_assert(std::endian::native == std::endian::little,
-                  "the mesh stream is little-endian; add byte swapping for this machine");
-    const std::size_t v = mesh.vertexCount(), t = mesh.triangleCount();
-    std::string body(16 + 4 * (6 * v + 3 * t), '\0');
-    char* out = body.data();
-    const std::uint32_t header[4] = {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(t),
-                                     static_cast<std::uint32_t>(revision & 0xffffffffu),
-                                     resolution};
-    std::memcpy(out, header, sizeof header);
-    out += sizeof header;
-    std::memcpy(out, mesh.positions.data(), 12 * v);
-    out += 12 * v;
-    if (mesh.normals.size() == 3 * v) std::memcpy(out, mesh.normals.data(), 12 * v);
-    out += 12 * v;
-    std::memcpy(out, mesh.indices.data(), 12 * t);
-    res.set_content(std::move(body), "application/octet-stream");
-  }
-
-  /// The vertices whose position or normal differ between `from` and `to` (same topology),
-  /// as runs [start, start + count); runs closer than kDeltaRunGap vertices are merged (a
-  /// few unchanged vertices cost less than a run).
-  static std::vector<std::uint32_t> changedRuns(const Mesh& from, const Mesh& to) {
-    constexpr std::size_t kDeltaRunGap = 8;
-    const std::size_t v = to.vertexCount();
-    const bool normals = to.normals.size() == 3 * v;
-    const auto differs = [&](std::size_t i) {
-      return std::memcmp(&from.positions[3 * i], &to.positions[3 * i], 12) != 0 ||
-             (normals && std::memcmp(&from.normals[3 * i], &to.normals[3 * i], 12) != 0);
-    };
-    std::vector<std::uint32_t> runs;  // start, count, start, count, ...
-    for (std::size_t i = 0; i < v; ++i) {
-      if (!differs(i)) continue;
-      std::size_t end = i + 1;
-      for (std::size_t gap = 0; end < v && gap <= kDeltaRunGap; ++end)
-        gap = differs(end) ? 0 : gap + 1;
-      while (end > i + 1 && !differs(end - 1)) --end;
-      if (!runs.empty() && i - (runs[runs.size() - 2] + runs.back()) <= kDeltaRunGap) {
-        runs.back() = static_cast<std::uint32_t>(end - runs[runs.size() - 2]);
-      } else {
-        runs.push_back(static_cast<std::uint32_t>(i));
-        runs.push_back(static_cast<std::uint32_t>(end - i));
-      }
-      i = end - 1;
-    }
-    return runs;
-  }
-
-  /// The delta of `to` against `from` (the client's mesh): a header of five uint32 (V, T,
-  /// revision, resolution, run count R), the runs (start, count) as uint32[2R], then the
-  /// positions float32[3C] and normals float32[3C] of the C changed vertices, in run order.
-  static void sendMeshDelta(httplib::Response& res, const Mesh& from, const Mesh& to,
-                            std::uint64_t revision, std::uint32_t resolution) {
-    const std::vector<std::uint32_t> runs = changedRuns(from, to);
-    std::size_t changed = 0;
-    for (std::size_t r = 1; r < runs.size(); r += 2) changed += runs[r];
-    std::string body(20 + 4 * runs.size() + 24 * changed, '\0');
-    char* out = body.data();
-    const std::uint32_t header[5] = {static_cast<std::uint32_t>(to.vertexCount()),
-                                     static_cast<std::uint32_t>(to.triangleCount()),
-                                     static_cast<std::uint32_t>(revision & 0xffffffffu), resolution,
-                                     static_cast<std::uint32_t>(runs.size() / 2)};
-    std::memcpy(out, header, sizeof header);
-    out += sizeof header;
-    std::memcpy(out, runs.data(), 4 * runs.size());
-    out += 4 * runs.size();
-    const bool normals = to.normals.size() == to.positions.size();
-    for (const auto* buffer : {&to.positions, &to.normals})
-      for (std::size_t r = 0; r < runs.size(); r += 2) {
-        const std::size_t bytes = 12 * std::size_t{runs[r + 1]};
-        if (buffer == &to.positions || normals)
-          std::memcpy(out, buffer->data() + 3 * std::size_t{runs[r]}, bytes);
-        out += bytes;
-      }
-    res.set_content(std::move(body), "application/octet-stream");
-  }
-
   StudioOptions options_;
   const std::string token_;           // empty: none required (--no-token)
   std::vector<std::string> hosts_;    // the Host values naming this server, lower case
   std::vector<std::string> origins_;  // "http://" + each of hosts_
-  fs::path root_;
+  RootSandbox sandbox_;               // every path of a request resolves inside its root
   fs::path webDir_;
   httplib::Server server_;
   std::thread thread_;

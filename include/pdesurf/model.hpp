@@ -15,14 +15,26 @@
 #include <variant>
 #include <vector>
 
-#include "pdesurf/bspline_pde_io.hpp"
+#include "pdesurf/bspline_pde_model.hpp"
+#include "pdesurf/geometry.hpp"
 #include "pdesurf/mesh.hpp"
 #include "pdesurf/nurbs.hpp"
-#include "pdesurf/spectral_io.hpp"
-#include "pdesurf/transform.hpp"
+#include "pdesurf/spectral_model.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {
+
+/// Any model as a file describes it (docs/model-format.md). Parsed and written by io
+/// (model_io.hpp: parseModel, loadModel, serializeModel).
+using AnyModel = std::variant<VertexFrameModel, SpectralModel, CrossSectionModel, BSplinePdeModel>;
+
+/// The "type" of a model file: "vertex-frames", "spectral", "cross-sections", "bspline-pde".
+const char* modelTypeName(const AnyModel& model);
+/// The "name" a model file gives (empty when it gives none).
+const std::string& modelNameOf(const AnyModel& model);
+
+/// A spectral or cross-section model, solved; nothing for the other types.
+std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source);
 
 /// Any model, solved. Alternatives in the order of AnyModel's: a vertex-frame surface, a
 /// spectral patch or cross-section chain (SolvedSpectral), a B-spline PDE surface or blend.
@@ -69,9 +81,6 @@ SolvedModel solveModel(AnyModel model, const std::string& source, const SolveOpt
 /// the model does not have), with what is wrong: "out of range, the model has 3 frames
 /// (indices 0 to 2)".
 void checkSolveOptions(const AnyModel& model, const SolveOptions& options);
-
-/// Reads, parses and solves a model file (errors name the path).
-SolvedModel loadAndSolve(const std::string& path, const SolveOptions& options = {});
 
 /// The mesh for options.resolution samples per patch side, for every type (the resolution of
 /// the CLI's --resolution and the studio's meshes): watertight where patches share edges,
@@ -139,9 +148,5 @@ std::string countText(std::size_t n, const std::string& noun);
 
 /// Whether a session edits the model's parts (vertex frames) or only transforms it whole.
 bool hasEditableParts(const AnyModel& model);
-
-/// Throws ModelError (source "transform") when transformModel(model, map) would be invalid
-/// (vertex frames: a force turned onto a component whose a1/Lu² + a2/Lv² is 0).
-void checkTransform(const AnyModel& model, const AffineMap& map);
 
 }  // namespace pdesurf

@@ -1,6 +1,6 @@
-// Editing sessions on models of any type (ModelSession): validated edits, whole-model
-// transforms, undo and redo, the solved model cached per revision. The studio server is a
-// thin HTTP layer over this; nothing here knows about HTTP or files.
+// Editing sessions on models of any type (ModelSession): edits, whole-model transforms, undo
+// and redo, the solved model cached per revision. The studio server is a thin HTTP layer over
+// this; nothing here knows about HTTP or files (edit_io.hpp parses and checks the edits).
 #pragma once
 
 #include <cstdint>
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pdesurf/model.hpp"
+#include "pdesurf/transform.hpp"
 
 namespace pdesurf {
 
@@ -51,30 +52,6 @@ struct GroupedEdit {
   Edit edit;
   std::string group;
 };
-
-/// Parses and validates an edit against `model`: JSON such as
-///   {"op": "move-vertex", "vertex": 3, "position": [0, 1, 2], "group": "drag-7"}
-///   {"op": "set-parameters", "frames": [0, 2], "a1": [1, 1, 1], "a2": [2, 2, 2]}
-///   {"op": "set-forces", "frame": 1, "forces": [{"f0": [0, 0, 1], "region": [0, 1, 0, 1]}]}
-///   {"op": "set-shared-forces", "forces": [{"f0": [0, 0, -1], "frames": [0, 1]}]}
-/// Everything the model parser would check of the result is checked (indices in range,
-/// finite numbers, regions, forces that have a solution with the frame's a1 and a2).
-/// Throws ModelError with source "edit" and the JSON path of the problem.
-GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model);
-
-/// Parses a whole-model transform as the studio sends it (POST /api/transform):
-///   {"translate": [x, y, z],
-///    "rotate": {"axis": [x, y, z], "degrees": d, "center": [x, y, z]},
-///    "scale": s, "center": [x, y, z]}
-/// All parts optional but at least one; applied in the order scale (about "center", s > 0),
-/// rotate (about its own "center", else the top-level one), translate. "center" defaults to
-/// the origin. Throws ModelError with source "transform" and the JSON path of the problem.
-AffineMap parseTransform(std::string_view json);
-
-/// Throws ModelError (source "transform") when transformModel(model, map) would be invalid:
-/// a force turned onto a component whose a1/Lu² + a2/Lv² is 0 (per-component a1/a2). The
-/// AnyModel overload (model.hpp) checks a model of any type.
-void checkTransform(const VertexFrameModel& model, const AffineMap& map);
 
 /// Snapshots of a value for undo and redo. Consecutive changes of one non-empty group
 /// undo as one step.

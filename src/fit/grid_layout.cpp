@@ -18,7 +18,7 @@
 #include <fmt/format.h>
 #include <Eigen/SparseLU>
 
-#include "analysis/triangle_tree.hpp"
+#include "numerics/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
 
 namespace pdesurf {

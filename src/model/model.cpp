@@ -4,6 +4,7 @@
 #include "pdesurf/model.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <numbers>
 #include <span>
 #include <stdexcept>
@@ -11,7 +12,6 @@
 #include <fmt/format.h>
 
 #include "pdesurf/analysis.hpp"
-#include "pdesurf/session.hpp"
 
 namespace pdesurf {
 
@@ -24,6 +24,22 @@ struct Overloaded : F... {
 };
 
 }  // namespace
+
+const char* modelTypeName(const AnyModel& model) {
+  constexpr const char* kNames[] = {"vertex-frames", "spectral", "cross-sections", "bspline-pde"};
+  static_assert(std::size(kNames) == std::variant_size_v<AnyModel>);
+  return kNames[model.index()];
+}
+
+const std::string& modelNameOf(const AnyModel& model) {
+  return std::visit([](const auto& m) -> const std::string& { return m.name; }, model);
+}
+
+std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source) {
+  if (const auto* m = std::get_if<SpectralModel>(&model)) return solveSpectralModel(*m, source);
+  if (const auto* m = std::get_if<CrossSectionModel>(&model)) return solveSpectralModel(*m, source);
+  return std::nullopt;
+}
 
 SolvedModel::SolvedModel(std::shared_ptr<const AnyModel> model, SolvedAlternative solved,
                          std::string source, SolveOptions options)
@@ -77,10 +93,6 @@ void checkSolveOptions(const AnyModel& model, const SolveOptions& options) {
   const std::size_t n = frames->frames.size();
   throw std::out_of_range(fmt::format("out of range, the model has {} frame{} (indices 0 to {})", n,
                                       n == 1 ? "" : "s", n - 1));
-}
-
-SolvedModel loadAndSolve(const std::string& path, const SolveOptions& options) {
-  return solveModel(loadModel(path), path, options);
 }
 
 Mesh tessellate(const SolvedModel& solved, const TessellateOptions& options) {
@@ -234,11 +246,6 @@ ModelOverlay overlay(const SolvedModel& solved) {
 
 bool hasEditableParts(const AnyModel& model) {
   return std::holds_alternative<VertexFrameModel>(model);
-}
-
-void checkTransform(const AnyModel& model, const AffineMap& map) {
-  // The other types' solvers accept any valid map's result (transform.hpp).
-  if (const auto* frames = std::get_if<VertexFrameModel>(&model)) checkTransform(*frames, map);
 }
 
 }  // namespace pdesurf

@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "pdesurf/model_io.hpp"
+#include "pdesurf/edit_io.hpp"
 
 namespace pdesurf {
 

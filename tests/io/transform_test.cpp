@@ -12,6 +12,7 @@
 #include <random>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 #include "pdesurf/spectral_io.hpp"

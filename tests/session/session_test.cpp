@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 #include "support/models.hpp"
