@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model.hpp"
 
 namespace pdesurf::cli {
 
@@ -23,17 +24,11 @@ inline double msSince(Clock::time_point t0) {
 
 /// The model's own name, else its file name.
 inline std::string modelName(const std::string& name, const std::string& path) {
-  if (!name.empty()) return name;
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
+  return modelDisplayName(name, path);
 }
 
 /// "1 frame", "2 frames", "1 vertex", "3 vertices".
-inline std::string count(std::size_t n, const std::string& noun) {
-  if (n == 1) return "1 " + noun;
-  if (noun == "vertex") return fmt::format("{} vertices", n);
-  return fmt::format("{} {}{}", n, noun, noun.ends_with("ch") ? "es" : "s");
-}
+inline std::string count(std::size_t n, const std::string& noun) { return countText(n, noun); }
 
 /// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
 inline Mesh readTriangles(const std::string& path) {

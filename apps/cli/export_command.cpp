@@ -3,18 +3,15 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <span>
 #include <stdexcept>
-#include <variant>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "pdesurf/cad_export.hpp"
+#include "pdesurf/model_io.hpp"
 #include "pdesurf/nurbs.hpp"
-#include "pdesurf/spectral_io.hpp"
-#include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf::cli {
 
@@ -34,26 +31,14 @@ struct Converted {
 };
 
 Converted convert(const std::string& path, const NurbsExportOptions& options) {
-  const AnyModel any = loadModel(path);
+  AnyModel any = loadModel(path);
   Converted out;
-  out.name = modelName(modelNameOf(any), path);
   auto t0 = Clock::now();
-  if (const auto* frames = std::get_if<VertexFrameModel>(&any)) {
-    const VertexFrameSurface surface = solve(*frames);
-    out.solveMs = msSince(t0);
-    t0 = Clock::now();
-    out.nurbs = toNurbs(surface, options);
-  } else if (const auto* bspline = std::get_if<BSplinePdeModel>(&any)) {
-    const SolvedBSplinePde solved = solveBSplineModel(*bspline, path);
-    out.solveMs = msSince(t0);
-    t0 = Clock::now();
-    out.nurbs = toNurbs(std::span<const BSplineSurface>(solved.pieces), options);
-  } else {
-    const SolvedSpectral solved = *solveIfSpectral(any, path);  // the types left
-    out.solveMs = msSince(t0);
-    t0 = Clock::now();
-    out.nurbs = toNurbs(solved, options);
-  }
+  const SolvedModel solved = solveModel(std::move(any), path);
+  out.solveMs = msSince(t0);
+  out.name = solved.displayName();
+  t0 = Clock::now();
+  out.nurbs = toNurbs(solved, options);
   out.convertMs = msSince(t0);
   return out;
 }

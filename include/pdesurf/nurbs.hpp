@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "pdesurf/bspline_pde.hpp"
-#include "pdesurf/spectral_io.hpp"
+#include "pdesurf/spectral_model.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {

@@ -16,7 +16,7 @@
 #include <tbb/task_arena.h>
 #include <Eigen/Geometry>
 
-#include "analysis/triangle_tree.hpp"
+#include "numerics/triangle_tree.hpp"
 
 namespace pdesurf {
 namespace {

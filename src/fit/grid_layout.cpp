@@ -18,8 +18,8 @@
 #include <fmt/format.h>
 #include <Eigen/SparseLU>
 
-#include "analysis/triangle_tree.hpp"
 #include "fit/lattice_frame.hpp"
+#include "numerics/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
 
 namespace pdesurf {

@@ -1,7 +1,7 @@
 // Patches as clamped bicubic B-spline surfaces: exact conversions (Bézier form of the
 // vertex-frame polynomial, clamping of uniform B-splines) and the interpolating
 // approximation with its measured deviation (docs/nurbs-export.md).
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include "pdesurf/nurbs.hpp"
 

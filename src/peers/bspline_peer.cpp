@@ -8,7 +8,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
-#include "analysis/triangle_tree.hpp"
+#include "numerics/triangle_tree.hpp"
 #include "pdesurf/peers.hpp"
 
 namespace pdesurf {
