@@ -428,12 +428,10 @@ class StudioServer::Impl {
     } catch (const CadError& e) {
       fail(500, e.what());
     }
-    return {{"path", sandbox_.relative(path)},
-            {"faces", nurbs.faces.size()},
-            {"exactFaces", nurbs.exactCount()},
-            {"facesOverTolerance", nurbs.overToleranceCount()},
-            {"maxDeviation", nurbs.maxDeviation()},
-            {"shells", report.shells}};
+    return {
+        {"path", sandbox_.relative(path)},      {"faces", nurbs.faces.size()},
+        {"exactFaces", nurbs.exactCount()},     {"facesOverTolerance", nurbs.overToleranceCount()},
+        {"maxDeviation", nurbs.maxDeviation()}, {"shells", report.shells}};
   }
 
   /// The journal: the current model beside its file after every change. A pending
@@ -655,18 +653,17 @@ class StudioServer::Impl {
 
     // The true boundary curves of every patch (the surface view's frame overlay): float32
     // [patch][side v=0, u=1, v=1, u=0][sample][xyz], `samples` points per side.
-    server_.Get("/api/boundaries",
-                guarded([this](const httplib::Request& req, httplib::Response& res) {
-                  requireEditable();
-                  std::uint32_t samples = kDefaultMeshResolution + 1;
-                  if (req.has_param("samples"))
-                    samples = parseUint(req.get_param_value("samples"), kMinResolution,
-                                        kMaxMeshResolution, "samples");
-                  res.set_content(
-                      boundaryCurves(*session_->solved(solveOptions(req)).frames(), samples),
-                      "application/octet-stream");
-                  res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
-                }));
+    server_.Get(
+        "/api/boundaries", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          requireEditable();
+          std::uint32_t samples = kDefaultMeshResolution + 1;
+          if (req.has_param("samples"))
+            samples = parseUint(req.get_param_value("samples"), kMinResolution, kMaxMeshResolution,
+                                "samples");
+          res.set_content(boundaryCurves(*session_->solved(solveOptions(req)).frames(), samples),
+                          "application/octet-stream");
+          res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+        }));
 
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
                   std::vector<std::string> files;
