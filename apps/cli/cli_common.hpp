@@ -4,11 +4,14 @@
 
 #include <chrono>
 #include <cstddef>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/model.hpp"
 
 namespace pdesurf::cli {
@@ -35,6 +38,34 @@ inline Mesh readTriangles(const std::string& path) {
   Mesh mesh = readMesh(path);
   if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
   return mesh;
+}
+
+/// The planes and loops `slice` and `rebuild` choose from their shared options (--axis, the
+/// count, --range, --near, --track), checked before any work; a bad --range or --near throws
+/// `UsageError` (the caller's usage error, exit 2) naming the option.
+template <class UsageError>
+SliceOptions sliceOptionsFrom(const std::string& axis, std::uint32_t planes,
+                              const std::vector<double>& range, const std::vector<double>& near,
+                              bool track) {
+  SliceOptions slice;
+  slice.axis = *parseAxis(axis);
+  slice.count = planes;
+  if (!range.empty()) {
+    slice.range = {range[0], range[1]};
+    try {
+      slicePlanes(slice, 0.0, 1.0);  // the range's own checks, before any work
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(fmt::format("--range: {}", e.what()));
+    }
+  }
+  if (!near.empty()) {
+    slice.near = Vec3(near[0], near[1], near[2]);
+    if (!slice.near->allFinite())
+      throw UsageError(
+          fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
+  }
+  slice.track = track;
+  return slice;
 }
 
 }  // namespace pdesurf::cli

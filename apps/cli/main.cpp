@@ -341,24 +341,7 @@ struct SliceCommand {
   }
 
   int run() const {
-    SliceOptions options;
-    options.axis = *parseAxis(axis);
-    options.count = count;
-    if (!range.empty()) {
-      options.range = {range[0], range[1]};
-      try {
-        slicePlanes(options, 0.0, 1.0);  // the range's own checks, before any work
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(fmt::format("--range: {}", e.what()));
-      }
-    }
-    if (!near.empty()) {
-      options.near = Vec3(near[0], near[1], near[2]);
-      if (!options.near->allFinite())
-        throw UsageError(
-            fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
-    }
-    options.track = track;
+    const SliceOptions options = cli::sliceOptionsFrom<UsageError>(axis, count, range, near, track);
     const Mesh mesh = readTriangles(meshPath);
     std::vector<MeshSection> sections;
     try {

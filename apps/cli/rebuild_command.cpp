@@ -191,25 +191,7 @@ int RebuildCommand::run() const {
 }
 
 SliceOptions RebuildCommand::sliceOptions() const {
-  SliceOptions slice;
-  slice.axis = *parseAxis(axis);
-  slice.count = sectionCount;
-  if (!range.empty()) {
-    slice.range = {range[0], range[1]};
-    try {
-      slicePlanes(slice, 0.0, 1.0);  // the range's own checks, before any work
-    } catch (const std::invalid_argument& e) {
-      throw RebuildUsageError(fmt::format("--range: {}", e.what()));
-    }
-  }
-  if (!near.empty()) {
-    slice.near = Vec3(near[0], near[1], near[2]);
-    if (!slice.near->allFinite())
-      throw RebuildUsageError(
-          fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
-  }
-  slice.track = track;
-  return slice;
+  return sliceOptionsFrom<RebuildUsageError>(axis, sectionCount, range, near, track);
 }
 
 int RebuildCommand::runCrossSections() const {
