@@ -3,8 +3,15 @@
 // every core (oneTBB), so its rows are timed by the wall clock (UseRealTime), and so are
 // their single-threaded baselines.
 #include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -148,6 +155,15 @@ void BM_TessellateCold(benchmark::State& state) {
 }
 BENCHMARK(BM_TessellateCold)->Apply(meshSizes);
 
+/// The scaling rows' repetitions also report their fastest: on a shared VM other guests'
+/// work only ever adds time, so the minimum is the least disturbed figure.
+void scalingRows(benchmark::internal::Benchmark* b) {
+  b->Args({33, 1})->Args({33, 2})->Args({65, 1})->Args({65, 2})->UseRealTime();
+  b->Unit(benchmark::kMillisecond)->ComputeStatistics("min", [](const std::vector<double>& v) {
+    return *std::min_element(v.begin(), v.end());
+  });
+}
+
 /// Fresh tessellation at N = Arg 0 on at most Arg 1 threads (oneTBB): the scaling table.
 void BM_TessellateThreads(benchmark::State& state) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
@@ -155,13 +171,7 @@ void BM_TessellateThreads(benchmark::State& state) {
   runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
                 Buffers::Fresh);
 }
-BENCHMARK(BM_TessellateThreads)
-    ->Args({33, 1})
-    ->Args({33, 2})
-    ->Args({65, 1})
-    ->Args({65, 2})
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TessellateThreads)->Apply(scalingRows);
 
 /// The same into a Mesh whose buffers are reused (already mapped): no allocation, no faults.
 void BM_TessellateReused(benchmark::State& state) {
@@ -202,16 +212,16 @@ BENCHMARK(BM_RetessellateInCache)
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 
-/// The baselines' writing: nv vertices (position and normal, 6 floats each) and, when
-/// `triangles`, the mesh's triangle indices and patch ids, into its existing buffers. Compiled
+/// The baselines' writing: vertices [v0, v1) (position and normal, 6 floats each) and
+/// triangles [t0, t1) (indices and patch ids), into the mesh's existing buffers. Compiled
 /// for each SIMD level and run at the widest the CPU has, as the tessellation's kernels are.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
-void writeMeshData(Mesh& mesh, std::size_t nv, bool triangles) {
+void writeMeshRange(Mesh& mesh, std::size_t v0, std::size_t v1, std::size_t t0, std::size_t t1) {
   float* p = mesh.positions.data();
   float* n = mesh.normals.data();
-  for (std::size_t v = 0; v < nv; ++v) {
+  for (std::size_t v = v0; v < v1; ++v) {
     const auto x = static_cast<float>(v);
     p[3 * v] = x;
     p[3 * v + 1] = x + 1.0f;
@@ -220,12 +230,15 @@ void writeMeshData(Mesh& mesh, std::size_t nv, bool triangles) {
     n[3 * v + 1] = 0.0f;
     n[3 * v + 2] = 1.0f;
   }
-  if (!triangles) return;
   std::uint32_t* idx = mesh.indices.data();
-  for (std::size_t t = 0; t < mesh.indices.size(); ++t) idx[t] = static_cast<std::uint32_t>(t);
+  for (std::size_t t = 3 * t0; t < 3 * t1; ++t) idx[t] = static_cast<std::uint32_t>(t);
   std::uint32_t* pid = mesh.patchIds.data();
-  for (std::size_t t = 0; t < mesh.patchIds.size(); ++t)
-    pid[t] = static_cast<std::uint32_t>(t >> 9);
+  for (std::size_t t = t0; t < t1; ++t) pid[t] = static_cast<std::uint32_t>(t >> 9);
+}
+
+/// All nv vertices, and all triangles when `triangles`.
+void writeMeshData(Mesh& mesh, std::size_t nv, bool triangles) {
+  writeMeshRange(mesh, 0, nv, 0, triangles ? mesh.patchIds.size() : 0);
 }
 
 /// A baseline: the writing alone, into reused buffers sized as the tessellation's mesh.
@@ -247,10 +260,80 @@ void writeBaseline(benchmark::State& state, bool triangles) {
 void BM_WriteVerticesBaseline(benchmark::State& state) { writeBaseline(state, true); }
 BENCHMARK(BM_WriteVerticesBaseline)->Apply(meshSizes);
 
+/// The same writing (vertices, indices, patch ids) split over at most Arg 1 threads (oneTBB,
+/// contiguous chunks, as the tessellation's patches are): the most that more cores can gain
+/// when the mesh is too big for the caches and the stores go to memory. Args: N, threads.
+void BM_WriteVerticesBaselineThreads(benchmark::State& state) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(state.range(1)));
+  Mesh mesh;
+  tessellate(tessellationSheet(), {static_cast<std::uint32_t>(state.range(0))}, mesh);
+  const std::size_t nv = mesh.vertexCount(), nt = mesh.patchIds.size();
+  constexpr std::size_t kChunks = 64;  // many more than cores, few enough to be noise
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kChunks, 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t c = r.begin(); c != r.end(); ++c)
+                          writeMeshRange(mesh, nv * c / kChunks, nv * (c + 1) / kChunks,
+                                         nt * c / kChunks, nt * (c + 1) / kChunks);
+                      });
+    benchmark::DoNotOptimize(mesh.positions.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = static_cast<double>(nv);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
+}
+BENCHMARK(BM_WriteVerticesBaselineThreads)->Apply(scalingRows);
+
 /// The baseline in its own words, "writing the same number of vertices": positions
 /// and normals only (6 floats per vertex), the comparison for re-tessellation.
 void BM_WriteVertexDataBaseline(benchmark::State& state) { writeBaseline(state, false); }
 BENCHMARK(BM_WriteVertexDataBaseline)->Apply(meshSizes);
+
+#if defined(__SSE2__)
+/// The write baseline's data with non-temporal (streaming) stores, which write whole cache
+/// lines without reading them first: whether the tessellation's stores should stream. Same
+/// values as writeMeshRange, four at a time (the mesh's large buffers are page-aligned).
+void streamMeshData(Mesh& mesh, std::size_t nv) {
+  float* p = mesh.positions.data();
+  float* n = mesh.normals.data();
+  const std::size_t floats = 3 * nv / 12 * 12;  // whole groups of four vertices
+  for (std::size_t f = 0; f < floats; f += 12) {
+    const auto v = static_cast<float>(f / 3);
+    _mm_stream_ps(p + f, _mm_setr_ps(v, v + 1, v + 2, v + 1));
+    _mm_stream_ps(p + f + 4, _mm_setr_ps(v + 2, v + 3, v + 2, v + 3));
+    _mm_stream_ps(p + f + 8, _mm_setr_ps(v + 4, v + 3, v + 4, v + 5));
+    _mm_stream_ps(n + f, _mm_setr_ps(0, 0, 1, 0));
+    _mm_stream_ps(n + f + 4, _mm_setr_ps(0, 1, 0, 0));
+    _mm_stream_ps(n + f + 8, _mm_setr_ps(1, 0, 0, 1));
+  }
+  auto* idx = reinterpret_cast<__m128i*>(mesh.indices.data());
+  for (std::size_t t = 0; t < mesh.indices.size() / 4; ++t) {
+    const auto i = static_cast<int>(4 * t);
+    _mm_stream_si128(idx + t, _mm_setr_epi32(i, i + 1, i + 2, i + 3));
+  }
+  auto* pid = reinterpret_cast<__m128i*>(mesh.patchIds.data());
+  for (std::size_t t = 0; t < mesh.patchIds.size() / 4; ++t)
+    _mm_stream_si128(pid + t, _mm_set1_epi32(static_cast<int>((4 * t) >> 9)));
+  _mm_sfence();
+}
+
+/// BM_WriteVerticesBaseline with streaming stores (the few values after the last whole
+/// group of four are left out: under 16 bytes a buffer).
+void BM_WriteVerticesStreaming(benchmark::State& state) {
+  Mesh mesh;
+  tessellate(tessellationSheet(), {static_cast<std::uint32_t>(state.range(0))}, mesh);
+  const std::size_t nv = mesh.vertexCount();
+  for (auto _ : state) {
+    streamMeshData(mesh, nv);
+    benchmark::DoNotOptimize(mesh.positions.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = static_cast<double>(nv);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
+}
+BENCHMARK(BM_WriteVerticesStreaming)->Apply(meshSizes);
+#endif
 
 }  // namespace
 

@@ -362,12 +362,37 @@ struct PatchRing {
   bool repeatsIds;  ///< some boundary points of this patch are one mesh vertex
 };
 
+/// One boundary point of a patch's side into the mesh: its position stored (the last patch's
+/// stands), its normal summed, the first normal it gets kept apart.
+struct RingStore {
+  const float* pos;
+  const float* nor;
+  const std::uint32_t* ids;
+  float* __restrict positions;
+  float* __restrict normals;
+  float* __restrict firstNormal;
+  std::uint8_t* __restrict hasFirst;
+
+  void operator()(std::size_t q) const {
+    const std::size_t o = std::size_t{ids[q]} * 3;
+    if (!hasFirst[ids[q]]) {
+      hasFirst[ids[q]] = 1;
+      for (int comp = 0; comp < 3; ++comp) firstNormal[o + comp] = nor[3 * q + comp];
+    }
+    for (int comp = 0; comp < 3; ++comp) {
+      positions[o + comp] = pos[3 * q + comp];
+      normals[o + comp] += nor[3 * q + comp];
+    }
+  }
+};
+
 /// Tessellates surfaces laid out for one topology and resolution: layOut numbers the
 /// vertices and the triangles (and checks that the mesh fits 32-bit indices), run writes a
 /// surface's vertices, and its triangles when asked. Patches are tessellated in parallel
 /// (oneTBB), each into its own ranges of the mesh; the boundary points that patches share
-/// are then stored and their normals summed in patch order, one thread, so the mesh is the
-/// same bytes for any number of threads. Holds every buffer, so repeated runs do not allocate.
+/// are then stored and their normals summed in patch order (storeRings: edges in parallel,
+/// each point's operations in a fixed order), so the mesh is the same bytes for any number
+/// of threads. Holds every buffer, so repeated runs do not allocate.
 class TessellationEngine {
  public:
   void layOut(const FrameTopology& topo, std::uint32_t frames, std::uint32_t resolution);
@@ -396,8 +421,14 @@ class TessellationEngine {
   /// boundary ring into ringPos_ and ringNor_.
   void evaluatePatch(const VertexFrameSurface& surface, std::uint32_t k, bool writeTriangles,
                      Scratch& scratch, Mesh& mesh);
-  /// Patch k's boundary ring into the mesh: positions stored, normals summed.
-  void storeRing(std::uint32_t k, Mesh& mesh);
+  /// The patches' boundary rings into the mesh: positions stored, normals summed (in patch
+  /// order, deterministically) and normalised.
+  void storeRings(Mesh& mesh);
+  RingStore ringStore(std::uint32_t k, int s, Mesh& mesh);
+  /// Patch k's corners (and the points of its collapsed sides, which are corners).
+  void storeCorners(std::uint32_t k, Mesh& mesh);
+  /// The inner points of patch k's side s, whose edge is not collapsed.
+  void storeEdgeSide(std::uint32_t k, int s, Mesh& mesh);
   void writeTriangleRow(TriangleRows& rows, std::uint32_t j, std::uint32_t* indices,
                         std::uint32_t* patchIds) const;
   void fitScratch(Scratch& scratch) const;
@@ -406,7 +437,10 @@ class TessellationEngine {
   std::uint32_t n_ = 0, inner_ = 0, frames_ = 0;
   std::size_t np_ = 0;  ///< n rounded up to whole vectors: the length of line buffers
   std::vector<std::uint32_t> cornerId_, edgeBase_;
-  std::uint32_t boundaryCount_ = 0, vertexCount_ = 0;
+  std::uint32_t cornerCount_ = 0, boundaryCount_ = 0, vertexCount_ = 0;
+  /// Per edge, its inner points' count (from edgeBase_); and the sides (4k + s) on edges
+  /// that are not collapsed, edge after edge (from edgeSideStart_), in patch and side order.
+  std::vector<std::uint32_t> edgeInner_, edgeSideStart_, edgeSides_;
   std::vector<double> t_, tp_;  ///< grid parameters; tp_ padded with copies of 1
   std::array<std::uint32_t, 6 * kQuadBlock> pattern_{}, patternFlip_{};
   /// Per patch: its boundary ring's 4n mesh ids (see PatchRing) and what the ring repeats.
@@ -458,10 +492,27 @@ void TessellationEngine::layOut(const FrameTopology& topo, std::uint32_t frames,
         "than 32-bit indices can address: lower the resolution",
         frames, n, vertices64, triangles64));
   }
+  cornerCount_ = next;
   edgeBase_.assign(topo.edges.size(), kNone);
+  edgeInner_.assign(topo.edges.size(), 0);
   for (std::size_t e = 0; e < topo.edges.size(); ++e) {
     edgeBase_[e] = next;
-    next += edgeInner(topo.edges[e]);
+    edgeInner_[e] = edgeInner(topo.edges[e]);
+    next += edgeInner_[e];
+  }
+  // The sides on each edge with inner points, in patch and side order (a counting sort).
+  edgeSideStart_.assign(topo.edges.size() + 1, 0);
+  for (std::uint32_t k = 0; k < frames; ++k)
+    for (std::uint32_t e : topo.edgeOf[k])
+      if (edgeInner_[e] > 0) ++edgeSideStart_[e + 1];
+  for (std::size_t e = 0; e < topo.edges.size(); ++e) edgeSideStart_[e + 1] += edgeSideStart_[e];
+  edgeSides_.resize(edgeSideStart_.back());
+  {
+    std::vector<std::uint32_t> fill(edgeSideStart_.begin(), edgeSideStart_.end() - 1);
+    for (std::uint32_t k = 0; k < frames; ++k)
+      for (std::uint32_t s = 0; s < 4; ++s)
+        if (const std::uint32_t e = topo.edgeOf[k][s]; edgeInner_[e] > 0)
+          edgeSides_[fill[e]++] = 4 * k + s;
   }
   n_ = n;
   inner_ = inner;
@@ -647,64 +698,105 @@ void TessellationEngine::evaluatePatch(const VertexFrameSurface& surface, std::u
   }
 }
 
-void TessellationEngine::storeRing(std::uint32_t k, Mesh& mesh) {
-  const std::uint32_t n = n_, inner = inner_;
-  const std::size_t np = np_;
+RingStore TessellationEngine::ringStore(std::uint32_t k, int s, Mesh& mesh) {
+  const std::size_t side = (std::size_t{k} * 4 + s) * 3 * np_;
+  return {
+      ringPos_.data() + side, ringNor_.data() + side, rings_.data() + (std::size_t{k} * 4 + s) * n_,
+      mesh.positions.data(),  mesh.normals.data(),    firstNormal_.data(),
+      hasFirst_.data()};
+}
+
+void TessellationEngine::storeCorners(std::uint32_t k, Mesh& mesh) {
+  const std::uint32_t n = n_;
   const PatchRing& pr = patchRings_[k];
-  const std::uint32_t* ring = rings_.data() + std::size_t{k} * 4 * n;
   for (int s = 0; s < 4; ++s) {
-    const bool column = s == 1 || s == 3;
-    const float* pos = ringPos_.data() + (std::size_t{k} * 4 + s) * 3 * np;
-    const float* nor = ringNor_.data() + (std::size_t{k} * 4 + s) * 3 * np;
-    // Corners come with the rows; every other boundary point of the patch once.
-    const std::uint32_t* ids = ring + s * n;
-    float* __restrict positions = mesh.positions.data();
-    float* __restrict normals = mesh.normals.data();
-    float* __restrict firstNormal = firstNormal_.data();
-    std::uint8_t* __restrict hasFirst = hasFirst_.data();
-    auto store = [&](std::size_t q) {
-      const std::size_t o = std::size_t{ids[q]} * 3;
-      if (!hasFirst[ids[q]]) {
-        hasFirst[ids[q]] = 1;
-        for (int comp = 0; comp < 3; ++comp) firstNormal[o + comp] = nor[3 * q + comp];
-      }
-      for (int comp = 0; comp < 3; ++comp) {
-        positions[o + comp] = pos[3 * q + comp];
-        normals[o + comp] += nor[3 * q + comp];
-      }
-    };
-    if (!column) {
+    const RingStore store = ringStore(k, s, mesh);
+    // Corners come with the rows (Alpha, Beta); a collapsed side's points are its corner.
+    if (s == 0 || s == 2) {
       store(0);
       store(n - 1);
     }
-    if (pr.run[s] == 0) {
+    if (pr.collapsedSide[s])
       for (std::size_t q = 1; q + 1 < n; ++q) store(q);
-      continue;
-    }
-    // An edge's inner points are visited together, by the same patches in the same order:
-    // one of them tells whether this is the first visit. Then whole runs, which vectorise.
-    const std::size_t count = inner, o = std::size_t{ids[1]} * 3;
-    const bool reversed = pr.run[s] < 0;
-    const std::size_t start = reversed ? o - 3 * (count - 1) : o;  // lowest id's first float
-    if (!hasFirst[ids[1]]) {
-      std::fill_n(hasFirst + start / 3, count, std::uint8_t{1});
-      for (std::size_t r = 0; r < count; ++r)
-        for (int comp = 0; comp < 3; ++comp)
-          firstNormal[start + 3 * r + comp] = nor[3 * (reversed ? count - r : r + 1) + comp];
-    }
-    if (reversed) {
-      for (std::size_t r = 0; r < count; ++r)
-        for (int comp = 0; comp < 3; ++comp) {
-          positions[start + 3 * r + comp] = pos[3 * (count - r) + comp];
-          normals[start + 3 * r + comp] += nor[3 * (count - r) + comp];
-        }
-    } else {
-      for (std::size_t e = 0; e < 3 * count; ++e) {
-        positions[start + e] = pos[3 + e];
-        normals[start + e] += nor[3 + e];
+  }
+}
+
+void TessellationEngine::storeEdgeSide(std::uint32_t k, int s, Mesh& mesh) {
+  const std::uint32_t n = n_, inner = inner_;
+  const PatchRing& pr = patchRings_[k];
+  const RingStore store = ringStore(k, s, mesh);
+  if (pr.run[s] == 0) {  // a loop a→m→a: its mirrored halves share ids
+    for (std::size_t q = 1; q + 1 < n; ++q) store(q);
+    return;
+  }
+  // An edge's inner points are visited together, by the same patches in the same order:
+  // one of them tells whether this is the first visit. Then whole runs, which vectorise.
+  const float* pos = store.pos;
+  const float* nor = store.nor;
+  float* __restrict positions = store.positions;
+  float* __restrict normals = store.normals;
+  float* __restrict firstNormal = store.firstNormal;
+  std::uint8_t* __restrict hasFirst = store.hasFirst;
+  const std::size_t count = inner, o = std::size_t{store.ids[1]} * 3;
+  const bool reversed = pr.run[s] < 0;
+  const std::size_t start = reversed ? o - 3 * (count - 1) : o;  // lowest id's first float
+  if (!hasFirst[store.ids[1]]) {
+    std::fill_n(hasFirst + start / 3, count, std::uint8_t{1});
+    for (std::size_t r = 0; r < count; ++r)
+      for (int comp = 0; comp < 3; ++comp)
+        firstNormal[start + 3 * r + comp] = nor[3 * (reversed ? count - r : r + 1) + comp];
+  }
+  if (reversed) {
+    for (std::size_t r = 0; r < count; ++r)
+      for (int comp = 0; comp < 3; ++comp) {
+        positions[start + 3 * r + comp] = pos[3 * (count - r) + comp];
+        normals[start + 3 * r + comp] += nor[3 * (count - r) + comp];
       }
+  } else {
+    for (std::size_t e = 0; e < 3 * count; ++e) {
+      positions[start + e] = pos[3 + e];
+      normals[start + e] += nor[3 + e];
     }
   }
+}
+
+void TessellationEngine::storeRings(Mesh& mesh) {
+  // Every boundary point is either a corner or inside one edge, and its stores (position,
+  // normal sum, first normal) come from the patches that touch it in patch order, side order:
+  // corners in one pass over the patches, each edge's inner points from the edge's own sides
+  // (edgeSides_, in that order), edges in parallel. The same operations in the same order
+  // whatever the thread count, so the same bytes.
+  float* __restrict normals = mesh.normals.data();
+  std::fill_n(normals, std::size_t{cornerCount_} * 3, 0.0f);
+  std::fill_n(hasFirst_.data(), cornerCount_, std::uint8_t{0});
+  for (std::uint32_t k = 0; k < frames_; ++k) storeCorners(k, mesh);
+  const auto edges = static_cast<std::uint32_t>(edgeSideStart_.size() - 1);
+  const std::size_t grain =
+      std::max<std::size_t>(1, kPointsPerTask / std::max<std::uint32_t>(1, n_));
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, edges, static_cast<std::uint32_t>(grain)),
+                    [&](const tbb::blocked_range<std::uint32_t>& range) {
+                      for (std::uint32_t e = range.begin(); e != range.end(); ++e) {
+                        const std::uint32_t first = edgeBase_[e], count = edgeInner_[e];
+                        std::fill_n(normals + std::size_t{first} * 3, std::size_t{count} * 3, 0.0f);
+                        std::fill_n(hasFirst_.data() + first, count, std::uint8_t{0});
+                        for (std::uint32_t i = edgeSideStart_[e]; i < edgeSideStart_[e + 1]; ++i)
+                          storeEdgeSide(edgeSides_[i] / 4, static_cast<int>(edgeSides_[i] % 4),
+                                        mesh);
+                      }
+                    });
+  // Where the patches' normals cancel (the rim of a pillow, a fin folded back) no average
+  // direction exists, and the first patch's normal stands for all. Branch-free: vectorises.
+  const float* __restrict first = firstNormal_.data();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boundaryCount_, kPointsPerTask),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t v = range.begin(); v != range.end(); ++v) {
+                        float* nv = normals + 3 * v;
+                        const float len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+                        const bool cancelled = !(len > kCancelledNormal);
+                        for (int comp = 0; comp < 3; ++comp)
+                          nv[comp] = cancelled ? first[3 * v + comp] : nv[comp] / len;
+                      }
+                    });
 }
 
 void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j,
@@ -789,9 +881,6 @@ void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool
     mesh.indices.resize(firstTriangle_[frames_] * 3);
     mesh.patchIds.resize(firstTriangle_[frames_]);
   }
-  // Boundary normals are sums over the patches that meet there, normalised at the end.
-  std::fill_n(mesh.normals.begin(), std::size_t{boundaryCount_} * 3, 0.0f);
-  std::fill(hasFirst_.begin(), hasFirst_.end(), std::uint8_t{0});
   // Patches in parallel, in blocks of about kPointsPerTask points.
   const std::size_t grain = std::max<std::size_t>(1, kPointsPerTask / (std::size_t{n_} * n_));
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, frames_, grain),
@@ -801,19 +890,9 @@ void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool
                       for (std::uint32_t k = range.begin(); k != range.end(); ++k)
                         evaluatePatch(surface, k, writeTriangles, sc, mesh);
                     });
-  for (std::uint32_t k = 0; k < frames_; ++k) storeRing(k, mesh);
-
-  // Where the patches' normals cancel (the rim of a pillow, a fin folded back) no average
-  // direction exists, and the first patch's normal stands for all. Branch-free: vectorises.
-  float* __restrict normals = mesh.normals.data();
-  const float* __restrict first = firstNormal_.data();
-  for (std::size_t v = 0; v < boundaryCount_; ++v) {
-    float* nv = normals + 3 * v;
-    const float len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
-    const bool cancelled = !(len > kCancelledNormal);
-    for (int comp = 0; comp < 3; ++comp)
-      nv[comp] = cancelled ? first[3 * v + comp] : nv[comp] / len;
-  }
+  // The boundary points, which patches share: positions stored, normals summed and
+  // normalised.
+  storeRings(mesh);
 }
 
 void TessellationEngine::fitScratch(Scratch& sc) const {
