@@ -4,11 +4,14 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/mesh_slice.hpp"
@@ -19,7 +22,18 @@ namespace pdesurf::cli {
 constexpr int kExitInput = 1;  ///< an input file is invalid or unreadable
 constexpr int kExitUsage = 2;  ///< a usage error
 
+/// A well-formed argument that cannot be used with this input (main prints it, exit 2).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 using Clock = std::chrono::steady_clock;
+
+/// JSON that keeps its keys in the order written (slice and compare output).
+using Json = nlohmann::ordered_json;
+
+/// JSON for a point.
+inline Json pointJson(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
 inline double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -28,6 +42,14 @@ inline double msSince(Clock::time_point t0) {
 /// The model's own name, else its file name.
 inline std::string modelName(const std::string& name, const std::string& path) {
   return modelDisplayName(name, path);
+}
+
+/// The tessellation's samples per patch side (--resolution, 2 to 4097), shown with its default.
+inline CLI::Option* addResolution(CLI::App* cmd, std::uint32_t& resolution,
+                                  const std::string& help = "samples per patch side") {
+  return cmd->add_option("--resolution", resolution, help)
+      ->check(CLI::Range(2u, 4097u))
+      ->capture_default_str();
 }
 
 /// "1 frame", "2 frames", "1 vertex", "3 vertices".

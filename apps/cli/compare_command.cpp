@@ -1,0 +1,104 @@
+// `pdesurf compare`: Metro-style distances between a model's mesh and a mesh file
+// (docs/mesh-tools.md).
+#include <cstddef>
+#include <cstdint>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "distance_report.hpp"
+#include "pdesurf/mesh_distance.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "solve_args.hpp"
+
+namespace pdesurf::cli {
+
+namespace {
+
+/// `pdesurf compare`: Metro-style distances between a model's mesh and a mesh file.
+struct CompareCommand {
+  std::string modelPath, meshPath;
+  std::uint32_t resolution = 17;
+  std::size_t samples = DistanceOptions{}.samples;
+  bool json = false;
+  SolveArgs solveArgs;
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "compare",
+        "RMS, mean and largest distance between a model (tessellated as by build) and a mesh, "
+        "both ways, relative to the mesh's bounding-box diagonal");
+    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    cmd->add_option("mesh", meshPath, "reference mesh file: .off .obj .ply .stl")->required();
+    addResolution(cmd, resolution, "samples per patch side, as for build");
+    cmd->add_option("--samples", samples,
+                    "face samples on each mesh, spread by area (every vertex and every "
+                    "triangle is sampled too)")
+        ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
+        ->capture_default_str();
+    cmd->add_flag("--json", json, "print JSON");
+    solveArgs.add(cmd);
+    return cmd;
+  }
+
+  static Json oneWayJson(const OneWayDistance& d) {
+    return {{"samples", d.samples},
+            {"rms", d.rms},
+            {"rms_relative", d.rmsRelative},
+            {"mean", d.mean},
+            {"mean_relative", d.meanRelative},
+            {"max", d.max},
+            {"max_relative", d.maxRelative},
+            {"max_at", pointJson(d.maxAt)},
+            {"cover_radius", d.coverRadius}};
+  }
+
+  int run() const {
+    const BuiltModel built = buildModel(modelPath, resolution, solveArgs);
+    auto t0 = Clock::now();
+    const Mesh mesh = readTriangles(meshPath);
+    const double readMs = msSince(t0);
+    t0 = Clock::now();
+    DistanceOptions options;
+    options.samples = samples;
+    MeshDistance d;
+    try {
+      d = meshDistance(built.mesh, mesh, options);
+    } catch (const std::invalid_argument& e) {
+      throw MeshIoError(fmt::format("{} vs {}: {}", modelPath, meshPath, e.what()));
+    }
+    const double distanceMs = msSince(t0);
+    if (json) {
+      Json j = {{"model", modelPath},
+                {"mesh", meshPath},
+                {"resolution", resolution},
+                {"diagonal", d.diagonal},
+                {"model_to_mesh", oneWayJson(d.aToB)},
+                {"mesh_to_model", oneWayJson(d.bToA)},
+                {"hausdorff", d.hausdorff},
+                {"hausdorff_relative", d.hausdorffRelative}};
+      std::cout << j.dump(2) << '\n';
+      return 0;
+    }
+    fmt::print(
+        "{}: {} at resolution {}; {}: {}, bounding-box diagonal {:.6g} "
+        "(solve {:.3f} ms, tessellate {:.3f} ms, read {:.1f} ms, distance {:.1f} ms)\n",
+        built.name, count(built.mesh.triangleCount(), "triangle"), resolution, meshPath,
+        count(mesh.triangleCount(), "triangle"), d.diagonal, built.solveMs, built.tessMs, readMs,
+        distanceMs);
+    printDistances(d);
+    return 0;
+  }
+};
+
+}  // namespace
+
+Registered addCompareCommand(CLI::App& app) { return registerCommand<CompareCommand>(app); }
+
+}  // namespace pdesurf::cli
