@@ -1,7 +1,9 @@
-// Shared by the mesh readers and writers of src/io (mesh_io.cpp, mesh_read_cgal.cpp).
+// Shared by the mesh readers and writers of src/io: the error they throw and each format's
+// reader, which mesh_io.cpp calls by the file's extension.
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include <fmt/format.h>
@@ -16,6 +18,15 @@ template <typename... Args>
                        Args&&... args) {
   throw MeshIoError(fmt::format("{}: {}", path, fmt::format(format, std::forward<Args>(args)...)));
 }
+
+/// OBJ (mesh_read_obj.cpp).
+Mesh readObj(std::string_view text, const std::string& path);
+
+/// PLY, ASCII or binary (mesh_read_ply.cpp).
+Mesh readPly(std::string_view data, const std::string& path);
+
+/// glb, through tinygltf (mesh_read_glb.cpp).
+Mesh readGlb(const std::string& data, const std::string& path);
 
 /// ASCII or binary OFF (NOFF: with normals), polygons fanned into triangles, through CGAL.
 Mesh readOff(const std::string& data, const std::string& path);
