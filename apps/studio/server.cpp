@@ -166,7 +166,7 @@ constexpr const char* kIndexPage = R"(<!doctype html>
 <p>The studio's web front-end is not built here (<code>make build</code> builds web/dist; <code>PDESURF_WEB_DIR</code> names another folder). The server's JSON API:</p>
 <ul>
 <li>GET /api/model: the model, its path, revision, undo and redo depths, dirty, recovery</li>
-<li>POST /api/edit (an edit), /api/transform (move, turn, scale the model), /api/end-group, /api/undo, /api/redo</li>
+<li>POST /api/new (a new model file), /api/edit (an edit), /api/transform (move, turn, scale the model), /api/end-group, /api/undo, /api/redo</li>
 <li>GET /api/mesh?resolution=N&amp;solver=global|local&amp;seed=K: the surface as binary buffers</li>
 <li>GET /api/files; POST /api/open, /api/save, /api/save-as, /api/export {"path": ...}</li>
 <li>POST /api/recover, /api/discard-recovery: the autosave journal</li>
@@ -665,6 +665,22 @@ class StudioServer::Impl {
           res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
         }));
 
+    // The patch (frame) of every triangle of the mesh at `resolution` (uint32 each, as
+    // GET /api/mesh lays it out for this revision): the page picks frames on the surface.
+    server_.Get("/api/patch-ids",
+                guarded([this](const httplib::Request& req, httplib::Response& res) {
+                  requireEditable();
+                  std::uint32_t resolution = kDefaultMeshResolution;
+                  if (req.has_param("resolution"))
+                    resolution = parseUint(req.get_param_value("resolution"), kMinResolution,
+                                           kMaxMeshResolution, "resolution");
+                  const Mesh mesh = tessellate(session_->solved(solveOptions(req)), {resolution});
+                  res.set_content(std::string(reinterpret_cast<const char*>(mesh.patchIds.data()),
+                                              4 * mesh.patchIds.size()),
+                                  "application/octet-stream");
+                  res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+                }));
+
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
                   std::vector<std::string> files;
                   std::error_code ec;
@@ -711,6 +727,30 @@ class StudioServer::Impl {
                    saveTo(path);
                    Json out = status();
                    out["path"] = sandbox_.relative(path_);
+                   sendJson(res, out);
+                 }));
+
+    // A new vertex-frame model (newFrameModel) written to a new file and opened.
+    server_.Post("/api/new", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   const std::string requested = stringMember(bodyObject(req), "path");
+                   const NewModelOptions options = parseNewModel(req.body);
+                   const fs::path path = sandbox_.resolve(requested);
+                   if (path.extension() != ".json")
+                     fail(400, fmt::format("{}: a model file ends in .json", requested));
+                   std::error_code ec;
+                   if (fs::exists(path, ec))
+                     fail(409, fmt::format("{}: exists already (choose another name)", requested));
+                   sandbox_.makeParent(path);
+                   try {
+                     writeFileAtomically(path.string(),
+                                         serializeModel(AnyModel(newFrameModel(options))));
+                   } catch (const std::exception& e) {
+                     fail(500, e.what());
+                   }
+                   openModel(path, sandbox_.relative(path));
+                   Json out = status();
+                   out["path"] = sandbox_.relative(path_);
+                   out["recovery"] = recovery_;
                    sendJson(res, out);
                  }));
 
