@@ -365,6 +365,23 @@ class StudioServer::Impl {
     }
   }
 
+  /// A model file a request names (save as, new): inside the root, ending in .json.
+  fs::path modelFilePath(const std::string& requested) const {
+    const fs::path path = sandbox_.resolve(requested);
+    if (path.extension() != ".json")
+      fail(400, fmt::format("{}: a model file ends in .json", requested));
+    return path;
+  }
+
+  /// The status after a model was opened (open, new): with its path and whether an autosave
+  /// offers recovery.
+  Json openedStatus() const {
+    Json out = status();
+    out["path"] = sandbox_.relative(path_);
+    out["recovery"] = recovery_;
+    return out;
+  }
+
   /// The current model as its file says when it is the model read or saved last (so an
   /// untransformed view-only model is shown, saved and copied exactly as written), else as
   /// serializeModel writes it. A model with editable parts is always written by
@@ -701,10 +718,7 @@ class StudioServer::Impl {
                    if (!fs::is_regular_file(path, ec))
                      fail(400, fmt::format("{}: not a file", requested));
                    openModel(path, sandbox_.relative(path));
-                   Json out = status();
-                   out["path"] = sandbox_.relative(path_);
-                   out["recovery"] = recovery_;
-                   sendJson(res, out);
+                   sendJson(res, openedStatus());
                  }));
 
     server_.Post("/api/save", guarded([this](const httplib::Request&, httplib::Response& res) {
@@ -717,9 +731,7 @@ class StudioServer::Impl {
     server_.Post("/api/save-as",
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const std::string requested = stringMember(bodyObject(req), "path");
-                   const fs::path path = sandbox_.resolve(requested);
-                   if (path.extension() != ".json")
-                     fail(400, fmt::format("{}: a model file ends in .json", requested));
+                   const fs::path path = modelFilePath(requested);
                    std::error_code ec;
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
@@ -734,9 +746,7 @@ class StudioServer::Impl {
     server_.Post("/api/new", guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const std::string requested = stringMember(bodyObject(req), "path");
                    const NewModelOptions options = parseNewModel(req.body);
-                   const fs::path path = sandbox_.resolve(requested);
-                   if (path.extension() != ".json")
-                     fail(400, fmt::format("{}: a model file ends in .json", requested));
+                   const fs::path path = modelFilePath(requested);
                    std::error_code ec;
                    if (fs::exists(path, ec))
                      fail(409, fmt::format("{}: exists already (choose another name)", requested));
@@ -748,10 +758,7 @@ class StudioServer::Impl {
                      fail(500, e.what());
                    }
                    openModel(path, sandbox_.relative(path));
-                   Json out = status();
-                   out["path"] = sandbox_.relative(path_);
-                   out["recovery"] = recovery_;
-                   sendJson(res, out);
+                   sendJson(res, openedStatus());
                  }));
 
     server_.Post("/api/export",
