@@ -5,7 +5,7 @@
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
-import { expect, openStudio, settle, shot, test } from './fixture';
+import { expect, meshUpToDate, openStudio, settle, shot, test } from './fixture';
 import type { Studio } from './fixture';
 
 /** What a C0 gap "at rounding level" is for these models (a few units across): the library's
@@ -181,7 +181,8 @@ test('split, flip, weld, delete and add a frame on a grid; each undone', async (
   const before = (await studio.state()).model.frames[2].vertices;
   await page.keyboard.press('r');
   await expect.poll(async () => (await studio.state()).model.frames[2].vertices[0]).toBe(before[2]);
-  await page.keyboard.press('Control+z');
+  await meshUpToDate(page); // the page has taken the flip in
+  await page.getByTestId('undo').click();
   await expect.poll(async () => (await studio.state()).model.frames[2].vertices[0]).toBe(before[0]);
 
   // Weld the two ends (u = 0 of frame 0, u = 1 of frame 2): a tube of 3 frames.

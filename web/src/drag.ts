@@ -54,6 +54,8 @@ export function mountDragTool(studio: Studio): void {
       div.dataset.testid = 'select-box';
       document.body.append(div);
       box = { x: ev.clientX, y: ev.clientY, pointer: ev.pointerId, remove: !ev.shiftKey, div };
+      // A box that is never dragged open is a click: shift or ctrl+click on a frame's outline.
+      press = { x: ev.clientX, y: ev.clientY, shift: ev.shiftKey, ctrl: ev.ctrlKey || ev.metaKey };
       canvas.setPointerCapture(ev.pointerId);
       ev.preventDefault();
     } else {
@@ -107,14 +109,18 @@ export function mountDragTool(studio: Studio): void {
       return;
     }
     if (box && ev.pointerId === box.pointer) {
-      const inside = frameView.verticesInBox(box.x, box.y, ev.clientX, ev.clientY);
-      let next = [...store.state.selectedVertices];
-      for (const v of inside) next = toggled(next, v, box.remove ? 'remove' : 'add');
-      selectVertices(next);
+      const opened = Math.hypot(ev.clientX - box.x, ev.clientY - box.y) >= CLICK_PIXELS;
+      if (opened) {
+        const inside = frameView.verticesInBox(box.x, box.y, ev.clientX, ev.clientY);
+        let next = [...store.state.selectedVertices];
+        for (const v of inside) next = toggled(next, v, box.remove ? 'remove' : 'add');
+        selectVertices(next);
+        press = null;
+      }
       box.div.remove();
       box = null;
       frameView.controls.enabled = true;
-      return;
+      if (opened) return;
     }
     frameView.controls.enabled = true;
     if (press && Math.hypot(ev.clientX - press.x, ev.clientY - press.y) < CLICK_PIXELS) {
