@@ -166,7 +166,7 @@ constexpr const char* kIndexPage = R"(<!doctype html>
 <p>The studio's web front-end is not built here (<code>make build</code> builds web/dist; <code>PDESURF_WEB_DIR</code> names another folder). The server's JSON API:</p>
 <ul>
 <li>GET /api/model: the model, its path, revision, undo and redo depths, dirty, recovery</li>
-<li>POST /api/edit (an edit), /api/transform (move, turn, scale the model), /api/end-group, /api/undo, /api/redo</li>
+<li>POST /api/new (a new model file), /api/edit (an edit), /api/transform (move, turn, scale the model), /api/end-group, /api/undo, /api/redo</li>
 <li>GET /api/mesh?resolution=N&amp;solver=global|local&amp;seed=K: the surface as binary buffers</li>
 <li>GET /api/files; POST /api/open, /api/save, /api/save-as, /api/export {"path": ...}</li>
 <li>POST /api/recover, /api/discard-recovery: the autosave journal</li>
@@ -363,6 +363,23 @@ class StudioServer::Impl {
         recovery_ = false;  // an unreadable journal is no recovery
       }
     }
+  }
+
+  /// A model file a request names (save as, new): inside the root, ending in .json.
+  fs::path modelFilePath(const std::string& requested) const {
+    const fs::path path = sandbox_.resolve(requested);
+    if (path.extension() != ".json")
+      fail(400, fmt::format("{}: a model file ends in .json", requested));
+    return path;
+  }
+
+  /// The status after a model was opened (open, new): with its path and whether an autosave
+  /// offers recovery.
+  Json openedStatus() const {
+    Json out = status();
+    out["path"] = sandbox_.relative(path_);
+    out["recovery"] = recovery_;
+    return out;
   }
 
   /// The current model as its file says when it is the model read or saved last (so an
@@ -665,6 +682,22 @@ class StudioServer::Impl {
           res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
         }));
 
+    // The patch (frame) of every triangle of the mesh at `resolution` (uint32 each, as
+    // GET /api/mesh lays it out for this revision): the page picks frames on the surface.
+    server_.Get("/api/patch-ids",
+                guarded([this](const httplib::Request& req, httplib::Response& res) {
+                  requireEditable();
+                  std::uint32_t resolution = kDefaultMeshResolution;
+                  if (req.has_param("resolution"))
+                    resolution = parseUint(req.get_param_value("resolution"), kMinResolution,
+                                           kMaxMeshResolution, "resolution");
+                  const Mesh mesh = tessellate(session_->solved(solveOptions(req)), {resolution});
+                  res.set_content(std::string(reinterpret_cast<const char*>(mesh.patchIds.data()),
+                                              4 * mesh.patchIds.size()),
+                                  "application/octet-stream");
+                  res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+                }));
+
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
                   std::vector<std::string> files;
                   std::error_code ec;
@@ -685,10 +718,7 @@ class StudioServer::Impl {
                    if (!fs::is_regular_file(path, ec))
                      fail(400, fmt::format("{}: not a file", requested));
                    openModel(path, sandbox_.relative(path));
-                   Json out = status();
-                   out["path"] = sandbox_.relative(path_);
-                   out["recovery"] = recovery_;
-                   sendJson(res, out);
+                   sendJson(res, openedStatus());
                  }));
 
     server_.Post("/api/save", guarded([this](const httplib::Request&, httplib::Response& res) {
@@ -701,9 +731,7 @@ class StudioServer::Impl {
     server_.Post("/api/save-as",
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const std::string requested = stringMember(bodyObject(req), "path");
-                   const fs::path path = sandbox_.resolve(requested);
-                   if (path.extension() != ".json")
-                     fail(400, fmt::format("{}: a model file ends in .json", requested));
+                   const fs::path path = modelFilePath(requested);
                    std::error_code ec;
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
@@ -712,6 +740,25 @@ class StudioServer::Impl {
                    Json out = status();
                    out["path"] = sandbox_.relative(path_);
                    sendJson(res, out);
+                 }));
+
+    // A new vertex-frame model (newFrameModel) written to a new file and opened.
+    server_.Post("/api/new", guarded([this](const httplib::Request& req, httplib::Response& res) {
+                   const std::string requested = stringMember(bodyObject(req), "path");
+                   const NewModelOptions options = parseNewModel(req.body);
+                   const fs::path path = modelFilePath(requested);
+                   std::error_code ec;
+                   if (fs::exists(path, ec))
+                     fail(409, fmt::format("{}: exists already (choose another name)", requested));
+                   sandbox_.makeParent(path);
+                   try {
+                     writeFileAtomically(path.string(),
+                                         serializeModel(AnyModel(newFrameModel(options))));
+                   } catch (const std::exception& e) {
+                     fail(500, e.what());
+                   }
+                   openModel(path, sandbox_.relative(path));
+                   sendJson(res, openedStatus());
                  }));
 
     server_.Post("/api/export",

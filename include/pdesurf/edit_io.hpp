@@ -12,13 +12,30 @@ namespace pdesurf {
 
 /// Parses and validates an edit against `model`: JSON such as
 ///   {"op": "move-vertex", "vertex": 3, "position": [0, 1, 2], "group": "drag-7"}
+///   {"op": "move-vertices", "vertices": [3, 4], "positions": [[0, 1, 2], [1, 1, 2]]}
 ///   {"op": "set-parameters", "frames": [0, 2], "a1": [1, 1, 1], "a2": [2, 2, 2]}
 ///   {"op": "set-forces", "frame": 1, "forces": [{"f0": [0, 0, 1], "region": [0, 1, 0, 1]}]}
 ///   {"op": "set-shared-forces", "forces": [{"f0": [0, 0, -1], "frames": [0, 1]}]}
+/// and the structure edits (session.hpp), sides as {"frame": k, "side": 0..3} (v = 0, u = 1,
+/// v = 1, u = 0):
+///   {"op": "extrude", "edges": [{"frame": 0, "side": 1}], "distance": 2}  (distance optional)
+///   {"op": "add-frame", "corners": [3, 8, 9, 4]}
+///   {"op": "delete-frames", "frames": [2]}
+///   {"op": "split-frame", "frame": 0, "parts": 2, "across": "u"}  (or "parts": 4)
+///   {"op": "weld-vertices", "vertices": [keep, remove]}
+///   {"op": "weld-edges", "edges": [{"frame": 0, "side": 3}, {"frame": 5, "side": 1}]}
+///   {"op": "flip-frames", "frames": [1]}
+/// A structure edit's indices and shape are checked here; what it would make is checked when
+/// the session applies it (restructure).
 /// Everything the model parser would check of the result is checked (indices in range,
 /// finite numbers, regions, forces that have a solution with the frame's a1 and a2).
 /// Throws ModelError with source "edit" and the JSON path of the problem.
 GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model);
+
+/// Parses what a new model is (POST /api/new): {"kind": "single" | "grid" | "tube", "u": 3,
+/// "v": 2, "size": 1, "name": "..."}, all but kind optional (NewModelOptions' defaults); other
+/// fields are left to the caller. Throws ModelError with source "new model" and the JSON path.
+NewModelOptions parseNewModel(std::string_view json);
 
 /// Parses a whole-model transform as the studio sends it (POST /api/transform):
 ///   {"translate": [x, y, z],

@@ -13,6 +13,7 @@
 
 #include "pdesurf/model.hpp"
 #include "pdesurf/transform.hpp"
+#include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {
 
@@ -20,6 +21,11 @@ namespace pdesurf {
 struct MoveVertex {
   std::uint32_t vertex = 0;
   Vec3 position = Vec3::Zero();
+};
+/// Moves several vertices at once (a selection dragged or offset): one edit, one undo step.
+struct MoveVertices {
+  std::vector<std::uint32_t> vertices;
+  std::vector<Vec3> positions;  ///< one per vertex
 };
 /// Sets a1 and/or a2 of one or several frames.
 struct SetParameters {
@@ -41,10 +47,81 @@ struct TransformModel {
   AffineMap map;
 };
 
-/// One change to a model. No edit changes which vertices a frame uses, so the topology
-/// (strips, edges, orientation) of a session never changes.
-using Edit =
-    std::variant<MoveVertex, SetParameters, SetFrameForces, SetSharedForces, TransformModel>;
+// Structure edits (src/session/structure.cpp): they change which vertices the frames use.
+// Sides are named by frame and Side (0..3: v = 0, u = 1, v = 1, u = 0, the order of the
+// studio's GET /api/boundaries). Each is refused with a ModelError (source "edit", the JSON
+// path and the reason) when its result would not be a valid model, changing nothing.
+
+/// New frames on boundary edges (one per edge), each its edge's frame moved across the edge
+/// (sharing it, facing the same way, its u and v running on); the new frames of a chain of
+/// edges share their walls, whose far corners move by the mean of their edges' offsets.
+struct ExtrudeEdges {
+  std::vector<FrameSide> edges;
+  /// How far the new frames reach; 0: as far as each edge's frame is wide across it.
+  double distance = 0.0;
+};
+/// A new frame on four corner vertices (its P1, P3, P5, P7, in turn round it); a side whose
+/// corners already bound an edge takes that edge's middle vertex, so the frames share it. The
+/// corners are taken in reverse when that orients the frame as its neighbours.
+struct AddFrame {
+  std::array<std::uint32_t, 4> corners{};
+};
+/// Removes frames; vertices only they used go too (indices above them move down).
+struct DeleteFrames {
+  std::vector<std::uint32_t> frames;
+};
+/// Splits a frame into 2 (across u or v) or 4, with new vertices on the current surface. The
+/// cut runs on through the neighbours across the edges it crosses (a loop cut), so edges
+/// stay shared whole.
+struct SplitFrame {
+  std::uint32_t frame = 0;
+  bool acrossU = true;   ///< cut at u = 1/2
+  bool acrossV = false;  ///< cut at v = 1/2
+};
+/// Merges vertex `remove` into `keep` (which moves half way to it).
+struct WeldVertices {
+  std::uint32_t keep = 0, remove = 0;
+};
+/// Merges two boundary edges (closing a tube): their vertices paired so that the frames stay
+/// consistently oriented, each pair kept as its lower index, moved half way.
+struct WeldEdges {
+  FrameSide first, second;
+};
+/// Reverses the u direction of frames (P1..P8 mirrored, force regions with them).
+struct FlipFrames {
+  std::vector<std::uint32_t> frames;
+};
+
+/// One change to a model. MoveVertex, SetParameters and the forces keep the frame structure
+/// (the session's topology); the structure edits make a new one.
+using Edit = std::variant<MoveVertex, MoveVertices, SetParameters, SetFrameForces, SetSharedForces,
+                          TransformModel, ExtrudeEdges, AddFrame, DeleteFrames, SplitFrame,
+                          WeldVertices, WeldEdges, FlipFrames>;
+
+/// True for the edits that change which vertices the frames use.
+bool changesStructure(const Edit& edit);
+
+/// The model after a structure edit. `surface` is `model` solved (SplitFrame places its new
+/// vertices on it). Throws ModelError (source "edit") with the reason when the result would
+/// not be a valid model: a side that is not on the boundary, a frame that would use a vertex
+/// twice, an edge of three frames, anything parseVertexFrameModel refuses.
+VertexFrameModel restructure(const VertexFrameModel& model, const FrameTopology& topology,
+                             const VertexFrameSurface& surface, const Edit& edit);
+
+/// What POST /api/new makes: one frame, a grid of u × v frames, or a tube of u frames round
+/// the z axis and v along it; square frames of side `size` in z = 0 (the grid) or round z
+/// (the tube, of circumference u × size).
+struct NewModelOptions {
+  enum class Kind { Single, Grid, Tube } kind = Kind::Single;
+  std::uint32_t u = 1, v = 1;
+  double size = 1.0;
+  std::string name = "new model";
+  /// At most this many frames each way.
+  static constexpr std::uint32_t kMaxFrames = 64;
+};
+/// The new model; throws ModelError (source "new model") for counts out of range (a tube
+/// needs at least 3 frames round) or a size that is not finite and above 0.
+VertexFrameModel newFrameModel(const NewModelOptions& options);
 
 /// An edit as the studio sends it, with an optional group: consecutive edits of one
 /// non-empty group (the moves of one drag, the steps of one slider gesture) undo as one.
@@ -94,11 +171,11 @@ class UndoHistory {
 };
 
 /// An editing session on a model of any type: validated edits of its editable parts (vertex
-/// frames: vertices, a1/a2, forces), whole-model transforms of every type, undo and redo (a
-/// drag is one step), and the solved model cached per revision. Models without editable parts
-/// are solved whenever they change and kept with their solution, so undo and redo do not
-/// solve again; a vertex-frame model is solved on first use after each change, on a topology
-/// built once per session.
+/// frames: vertices, a1/a2, forces, the frame structure), whole-model transforms of every type,
+/// undo and redo (a drag is one step), and the solved model cached per revision. Models without
+/// editable parts are solved whenever they change and kept with their solution, so undo and redo do
+/// not solve again; a vertex-frame model is solved on first use after each change, on a topology
+/// built again only when the frame structure changes.
 class ModelSession {
  public:
   /// One undo step holds the model as it was and, for a model without editable parts, its
@@ -106,6 +183,9 @@ class ModelSession {
   struct State {
     std::shared_ptr<const AnyModel> model;
     std::shared_ptr<const SolvedModel> solved;
+    /// Vertex frames: the frame structure, kept while edits leave it alone (shared, so a
+    /// drag re-solves and re-tessellates on the same layout) and new after a structure edit.
+    std::shared_ptr<const FrameTopology> topology;
   };
   /// At most this many undo steps are kept.
   static constexpr std::size_t kMaxUndo = UndoHistory<State>::kMaxUndo;
@@ -123,7 +203,8 @@ class ModelSession {
   std::uint64_t revision() const { return revision_; }
 
   /// Applies a valid edit (validate with parseEdit first); edits other than TransformModel
-  /// need editable(). A transform goes through transform().
+  /// need editable(). A transform goes through transform(). A structure edit whose result
+  /// is invalid throws ModelError (restructure) and leaves the session as it was.
   void apply(const Edit& edit, std::string_view group = {});
   /// Moves, turns or scales the model (one undo step). An invalid result (checkTransform)
   /// or a solver refusal throws ModelError and leaves the session as it was.
@@ -142,7 +223,7 @@ class ModelSession {
  private:
   /// Records the current state for undo and makes `next` current.
   void change(std::shared_ptr<const AnyModel> next, std::shared_ptr<const SolvedModel> solved,
-              std::string_view group);
+              std::string_view group, std::shared_ptr<const FrameTopology> topology = nullptr);
   /// The state's solution when the model has no editable parts (else null: solved lazily).
   std::shared_ptr<const SolvedModel> solveIfFixed(
       const std::shared_ptr<const AnyModel>& model) const;
@@ -151,7 +232,6 @@ class ModelSession {
   State current_;
   std::uint64_t revision_ = 0;
   UndoHistory<State> history_;
-  std::shared_ptr<const FrameTopology> topology_;  // vertex frames: built once
   std::uint64_t solvedRevision_ = 0;
   SolveOptions solvedOptions_;
 };

@@ -16,16 +16,20 @@ std::shared_ptr<const SolvedModel> ModelSession::solveIfFixed(
 
 ModelSession::ModelSession(AnyModel model, std::string source) : source_(std::move(source)) {
   auto shared = std::make_shared<const AnyModel>(std::move(model));
+  std::shared_ptr<const FrameTopology> topology;
   if (const auto* frames = std::get_if<VertexFrameModel>(shared.get()))
-    topology_ = std::make_shared<const FrameTopology>(buildTopology(*frames));
-  current_ = {shared, solveIfFixed(shared)};  // may throw: nothing to undo yet
+    topology = std::make_shared<const FrameTopology>(buildTopology(*frames));
+  current_ = {shared, solveIfFixed(shared), std::move(topology)};  // may throw: nothing to undo
 }
 
 void ModelSession::change(std::shared_ptr<const AnyModel> next,
-                          std::shared_ptr<const SolvedModel> solved, std::string_view group) {
+                          std::shared_ptr<const SolvedModel> solved, std::string_view group,
+                          std::shared_ptr<const FrameTopology> topology) {
   // A vertex-frame solution is not kept for undo: it is solved again when asked for.
-  history_.record(State{current_.model, editable() ? nullptr : current_.solved}, group);
-  current_ = {std::move(next), std::move(solved)};
+  history_.record(State{current_.model, editable() ? nullptr : current_.solved, current_.topology},
+                  group);
+  if (!topology) topology = current_.topology;  // the structure stays
+  current_ = {std::move(next), std::move(solved), std::move(topology)};
   ++revision_;
 }
 
@@ -35,12 +39,23 @@ void ModelSession::apply(const Edit& edit, std::string_view group) {
     return;
   }
   if (!editable()) throw std::logic_error("ModelSession::apply: the model has no editable parts");
+  if (changesStructure(edit)) {
+    const VertexFrameSurface& surface = *solved().frames();
+    auto next = restructure(*frames(), *current_.topology, surface, edit);  // may throw
+    auto topology = std::make_shared<const FrameTopology>(buildTopology(next));
+    history_.endGroup();  // a structure edit is a step of its own
+    change(std::make_shared<const AnyModel>(std::move(next)), nullptr, {}, std::move(topology));
+    return;
+  }
   VertexFrameModel next = *frames();
   std::visit(
       [&](const auto& e) {
         using T = std::decay_t<decltype(e)>;
         if constexpr (std::is_same_v<T, MoveVertex>) {
           next.vertices[e.vertex] = e.position;
+        } else if constexpr (std::is_same_v<T, MoveVertices>) {
+          for (std::size_t i = 0; i < e.vertices.size(); ++i)
+            next.vertices[e.vertices[i]] = e.positions[i];
         } else if constexpr (std::is_same_v<T, SetParameters>) {
           for (std::uint32_t k : e.frames) {
             if (e.a1) next.frames[k].a1 = *e.a1;
@@ -51,7 +66,10 @@ void ModelSession::apply(const Edit& edit, std::string_view group) {
         } else if constexpr (std::is_same_v<T, SetSharedForces>) {
           next.forces = e.forces;
         } else {
-          static_assert(std::is_same_v<T, TransformModel>);  // handled above
+          static_assert(std::is_same_v<T, TransformModel> || std::is_same_v<T, ExtrudeEdges> ||
+                        std::is_same_v<T, AddFrame> || std::is_same_v<T, DeleteFrames> ||
+                        std::is_same_v<T, SplitFrame> || std::is_same_v<T, WeldVertices> ||
+                        std::is_same_v<T, WeldEdges> || std::is_same_v<T, FlipFrames>);
         }
       },
       edit);
@@ -85,7 +103,7 @@ const SolvedModel& ModelSession::solved(const SolveOptions& options) {
       options.solver == solvedOptions_.solver && options.seedFrame == solvedOptions_.seedFrame;
   if (!current_.solved || solvedRevision_ != revision_ || !sameOptions) {
     current_.solved = std::make_shared<const SolvedModel>(
-        solveModel(current_.model, source_, options, topology_));
+        solveModel(current_.model, source_, options, current_.topology));
     solvedRevision_ = revision_;
     solvedOptions_ = options;
   }

@@ -74,7 +74,26 @@ export type Edit =
   | { op: 'move-vertex'; vertex: number; position: Vec3; group?: string }
   | { op: 'set-parameters'; frames: number[]; a1?: Vec3; a2?: Vec3; group?: string }
   | { op: 'set-forces'; frame: number; forces: FrameForce[]; group?: string }
-  | { op: 'set-shared-forces'; forces: SharedForce[]; group?: string };
+  | { op: 'set-shared-forces'; forces: SharedForce[]; group?: string }
+  | { op: 'move-vertices'; vertices: number[]; positions: Vec3[]; group?: string }
+  // The structure edits (sides: 0 v = 0, 1 u = 1, 2 v = 1, 3 u = 0).
+  | { op: 'extrude'; edges: { frame: number; side: number }[]; distance?: number }
+  | { op: 'add-frame'; corners: number[] }
+  | { op: 'delete-frames'; frames: number[] }
+  | { op: 'flip-frames'; frames: number[] }
+  | { op: 'split-frame'; frame: number; parts: 4 }
+  | { op: 'split-frame'; frame: number; parts: 2; across: 'u' | 'v' }
+  | { op: 'weld-vertices'; vertices: [number, number] }
+  | { op: 'weld-edges'; edges: { frame: number; side: number }[] };
+
+/** A new model (POST /api/new): one frame, a u × v grid, or a tube of u frames round z. */
+export interface NewModel {
+  path: string;
+  kind: 'single' | 'grid' | 'tube';
+  u?: number;
+  v?: number;
+  size?: number;
+}
 
 /** A whole-model transform (POST /api/transform), of any model type: scale about
  * `center`, then rotate (about its own center, else `center`), then translate. */
@@ -175,6 +194,7 @@ export const api = {
   saveAs: (path: string) => request<FileStatus>('POST', '/api/save-as', { path }),
   exportFile: (path: string, resolution?: number) =>
     request<ExportResult>('POST', '/api/export', resolution ? { path, resolution } : { path }),
+  newModel: (m: NewModel) => request<FileStatus>('POST', '/api/new', m),
   recover: () => request<Status>('POST', '/api/recover'),
   discardRecovery: () => request<Status>('POST', '/api/discard-recovery'),
 
@@ -186,6 +206,13 @@ export const api = {
     if (buffer.byteLength % (48 * samples) !== 0)
       throw new ApiError(0, `boundaries: ${buffer.byteLength} bytes, not whole patches of ${samples} samples a side`);
     return { revision: Number(res.headers.get('X-Revision')), samples, xyz: new Float32Array(buffer) };
+  },
+
+  /** The frame of every triangle of the mesh at `resolution`. */
+  async patchIds(resolution: number): Promise<{ revision: number; ids: Uint32Array }> {
+    const res = await send(`/api/patch-ids?resolution=${resolution}`, 'GET');
+    if (!res.ok) throw await failure(res);
+    return { revision: Number(res.headers.get('X-Revision')), ids: new Uint32Array(await res.arrayBuffer()) };
   },
 
   async mesh(options: MeshOptions = {}): Promise<MeshData | MeshDelta> {

@@ -1,9 +1,12 @@
-// The frame view's pointer tool: press a handle and drag to move its vertex (one undo
-// group per drag), click a frame's outline to select it (shift adds or removes), click
-// empty space to clear the selection. Installed before the orbit controls, so a press on
-// a handle never orbits.
+// The frame view's pointer tool: press a handle and drag to move its vertex, or the whole
+// vertex selection when the handle is part of it (one undo group per drag); shift+click a
+// handle adds or removes it, ctrl+click removes it; shift+drag on empty space selects the
+// vertices in a box (ctrl+drag removes them); click a frame's outline to select it (shift or
+// ctrl adds or removes), click empty space to clear the selection. Installed before the orbit
+// controls, so a press the tool takes never orbits.
 import type { Vec3 } from './api';
 import type { Studio } from './studio';
+import { toggled } from './structure';
 
 /** Presses that move less than this many pixels are clicks. */
 const CLICK_PIXELS = 5;
@@ -13,26 +16,63 @@ const HOVER_MAX_VERTICES = 20000;
 export function mountDragTool(studio: Studio): void {
   const { store, frameView, pump } = studio;
   const canvas = frameView.renderer.domElement;
-  let drag: { vertex: number; pointer: number } | null = null;
-  let press: { x: number; y: number; shift: boolean } | null = null;
+  /** A drag: the handle grabbed, and every vertex it moves with where it started. */
+  let drag: { vertex: number; pointer: number; moved: number[]; from: Vec3[] } | null = null;
+  let press: { x: number; y: number; shift: boolean; ctrl: boolean } | null = null;
+  let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;
+
+  const selectVertices = (vertices: number[]) =>
+    store.update(['selection'], (s) => {
+      s.selectedVertices = vertices;
+      s.selectedVertex = vertices.length ? vertices[vertices.length - 1] : null;
+    });
 
   canvas.addEventListener('pointerdown', (ev) => {
     if (ev.button !== 0 || !store.state.model) return;
+    const model = store.state.model;
+    const modifier = ev.shiftKey || ev.ctrlKey || ev.metaKey;
     const vertex = frameView.vertexAt(ev.clientX, ev.clientY);
-    if (vertex !== null) {
+    if (vertex !== null && modifier) {
       frameView.controls.enabled = false; // this listener runs before the controls'
-      drag = { vertex, pointer: ev.pointerId };
+      selectVertices(toggled(store.state.selectedVertices, vertex, ev.shiftKey ? 'toggle' : 'remove'));
+      ev.preventDefault();
+      return;
+    }
+    if (vertex !== null) {
+      frameView.controls.enabled = false;
+      const current = store.state.selectedVertices;
+      const moved = current.includes(vertex) && current.length > 1 ? [...current] : [vertex];
+      if (moved.length === 1) selectVertices([vertex]);
+      drag = { vertex, pointer: ev.pointerId, moved, from: moved.map((v) => [...model.vertices[v]] as Vec3) };
       canvas.setPointerCapture(ev.pointerId);
-      store.update(['selection'], (s) => (s.selectedVertex = vertex));
       studio.beginGesture('drag');
       ev.preventDefault();
+    } else if (modifier) {
+      frameView.controls.enabled = false;
+      const div = document.createElement('div');
+      div.className = 'select-box';
+      div.dataset.testid = 'select-box';
+      document.body.append(div);
+      box = { x: ev.clientX, y: ev.clientY, pointer: ev.pointerId, remove: !ev.shiftKey, div };
+      // A box that is never dragged open is a click: shift or ctrl+click on a frame's outline.
+      press = { x: ev.clientX, y: ev.clientY, shift: ev.shiftKey, ctrl: ev.ctrlKey || ev.metaKey };
+      canvas.setPointerCapture(ev.pointerId);
+      ev.preventDefault();
     } else {
-      press = { x: ev.clientX, y: ev.clientY, shift: ev.shiftKey };
+      press = { x: ev.clientX, y: ev.clientY, shift: ev.shiftKey, ctrl: ev.ctrlKey || ev.metaKey };
     }
   });
 
   canvas.addEventListener('pointermove', (ev) => {
     const model = store.state.model;
+    if (box && ev.pointerId === box.pointer) {
+      const { style } = box.div;
+      style.left = `${Math.min(box.x, ev.clientX)}px`;
+      style.top = `${Math.min(box.y, ev.clientY)}px`;
+      style.width = `${Math.abs(ev.clientX - box.x)}px`;
+      style.height = `${Math.abs(ev.clientY - box.y)}px`;
+      return;
+    }
     if (!drag && ev.buttons === 0 && model && model.vertices.length <= HOVER_MAX_VERTICES) {
       // The cursor tells what a press would do: grab a handle, select a frame, or orbit.
       const cursor =
@@ -44,11 +84,21 @@ export function mountDragTool(studio: Studio): void {
       if (canvas.style.cursor !== cursor) canvas.style.cursor = cursor;
     }
     if (!drag || ev.pointerId !== drag.pointer || !model) return;
-    const vertex = drag.vertex;
-    const target = frameView.dragTarget(model.vertices[vertex], ev.clientX, ev.clientY);
+    const { vertex, moved, from } = drag;
+    const start = from[moved.indexOf(vertex)];
+    const target = frameView.dragTarget(start, ev.clientX, ev.clientY);
     if (!target) return;
-    store.update(['vertex'], (s) => (s.model!.vertices[vertex] = target));
-    pump.push(() => ({ op: 'move-vertex', vertex, position: [...store.state.model!.vertices[vertex]] as Vec3 }));
+    const d = [target[0] - start[0], target[1] - start[1], target[2] - start[2]];
+    store.update(['vertex'], (s) => {
+      moved.forEach((v, i) => (s.model!.vertices[v] = [from[i][0] + d[0], from[i][1] + d[1], from[i][2] + d[2]]));
+    });
+    for (const v of moved) if (v !== store.state.selectedVertex) frameView.moveVertex(v, store.state.model!.vertices[v]);
+    const position = (v: number) => [...store.state.model!.vertices[v]] as Vec3;
+    pump.push(() =>
+      moved.length === 1
+        ? { op: 'move-vertex', vertex, position: position(vertex) }
+        : { op: 'move-vertices', vertices: moved, positions: moved.map(position) },
+    );
   });
 
   async function endPress(ev: PointerEvent): Promise<void> {
@@ -58,13 +108,28 @@ export function mountDragTool(studio: Studio): void {
       await studio.endGesture();
       return;
     }
+    if (box && ev.pointerId === box.pointer) {
+      const opened = Math.hypot(ev.clientX - box.x, ev.clientY - box.y) >= CLICK_PIXELS;
+      if (opened) {
+        const inside = frameView.verticesInBox(box.x, box.y, ev.clientX, ev.clientY);
+        let next = [...store.state.selectedVertices];
+        for (const v of inside) next = toggled(next, v, box.remove ? 'remove' : 'add');
+        selectVertices(next);
+        press = null;
+      }
+      box.div.remove();
+      box = null;
+      frameView.controls.enabled = true;
+      if (opened) return;
+    }
+    frameView.controls.enabled = true;
     if (press && Math.hypot(ev.clientX - press.x, ev.clientY - press.y) < CLICK_PIXELS) {
       const frame = frameView.frameAt(ev.clientX, ev.clientY);
-      const shift = press.shift;
+      const adding = press.shift || press.ctrl;
       store.update(['selection', 'forces'], (s) => {
         if (frame === null) {
-          if (!shift) s.selectedFrames = new Set();
-        } else if (shift) {
+          if (!adding) s.selectedFrames = new Set();
+        } else if (adding) {
           const next = new Set(s.selectedFrames);
           if (next.has(frame)) next.delete(frame);
           else next.add(frame);
@@ -72,7 +137,10 @@ export function mountDragTool(studio: Studio): void {
         } else {
           s.selectedFrames = new Set([frame]);
         }
-        if (frame === null && !shift) s.selectedVertex = null;
+        if (frame === null && !adding) {
+          s.selectedVertex = null;
+          s.selectedVertices = [];
+        }
         s.selectedForce = 0;
       });
     }

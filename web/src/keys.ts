@@ -2,6 +2,7 @@
 // help never disagrees with the keys.
 import { $ } from './dom';
 import type { Studio } from './studio';
+import type { ModellerActions } from './modeller';
 import type { ViewActions } from './views';
 
 interface Shortcut {
@@ -22,7 +23,7 @@ function typing(target: EventTarget | null): boolean {
   return target instanceof HTMLTextAreaElement || target instanceof HTMLSelectElement;
 }
 
-export function mountKeys(studio: Studio, views: ViewActions): void {
+export function mountKeys(studio: Studio, views: ViewActions, modeller?: ModellerActions): void {
   const { store } = studio;
   const click = (id: string) => () => $<HTMLButtonElement>(id).click();
   const toggle = (id: string) => () => {
@@ -44,6 +45,7 @@ export function mountKeys(studio: Studio, views: ViewActions): void {
       if (!help.hidden) return showHelp(false);
       store.update(['selection', 'forces'], (s) => {
         s.selectedVertex = null;
+        s.selectedVertices = [];
         s.selectedFrames = new Set();
         s.selectedForce = 0;
       });
@@ -73,6 +75,17 @@ export function mountKeys(studio: Studio, views: ViewActions): void {
     { keys: 'L', what: 'Live surface (on/off)', matches: plain('l'), run: toggle('live') },
     { keys: '?', what: 'This help (on/off)', matches: (e) => e.key === '?', run: () => showHelp(help.hidden) },
   ];
+  // The modeller's tools (modeller.ts), on the selection.
+  if (modeller)
+    shortcuts.push(
+      { keys: 'N', what: 'New model (one frame, a grid or a tube)', matches: plain('n'), run: () => modeller.newModel() },
+      { keys: 'E', what: 'Extrude the selected boundary edges (both corners selected)', matches: plain('e'), run: () => modeller.extrude() },
+      { keys: 'A', what: 'Add a frame on the 4 selected corners (picked in turn)', matches: plain('a'), run: () => modeller.addFrame() },
+      { keys: 'X', what: 'Delete the selected frames', matches: plain('x'), run: () => modeller.deleteFrames() },
+      { keys: 'S', what: 'Split the selected frame in 4', matches: (e) => plain('s')(e) && !e.shiftKey, run: () => modeller.split('4') },
+      { keys: 'W', what: 'Weld 2 selected vertices, or 2 selected boundary edges', matches: plain('w'), run: () => modeller.weld() },
+      { keys: 'R', what: "Flip the selected frames' u direction", matches: plain('r'), run: () => modeller.flip() },
+    );
 
   // The help: one row per shortcut, and what the mouse does.
   const table = $('help-keys');
@@ -94,7 +107,7 @@ export function mountKeys(studio: Studio, views: ViewActions): void {
   $('help-close').addEventListener('click', () => showHelp(false));
 
   document.addEventListener('keydown', (ev) => {
-    if (ev.defaultPrevented || $<HTMLDialogElement>('unsaved-dialog').open) return;
+    if (ev.defaultPrevented || $<HTMLDialogElement>('unsaved-dialog').open || $<HTMLDialogElement>('new-dialog').open) return;
     // In a text or number box keys are text, except Escape (leave the box).
     if (typing(ev.target)) {
       if (ev.key === 'Escape') (ev.target as HTMLElement).blur();

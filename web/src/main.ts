@@ -6,6 +6,7 @@
 import './style.css';
 import { mountAnalysis } from './analysis';import { mountDragTool } from './drag';
 import { mountKeys } from './keys';
+import { mountModeller } from './modeller';
 import { mountPanel } from './panel';
 import { mountSceneSync } from './scene-sync';
 import { mountStatusBar } from './statusbar';
@@ -24,7 +25,8 @@ mountPanel(studio);
 mountTransform(studio);
 const toolbar = mountToolbar(studio);
 mountAnalysis(studio);
-mountKeys(studio, mountViews(studio));
+const modeller = mountModeller(studio, toolbar.mayLeave, toolbar.refreshFiles);
+mountKeys(studio, mountViews(studio), modeller);
 
 function frame(): void {
   studio.frameView.renderIfNeeded();

@@ -18,7 +18,7 @@ export function mountSceneSync(studio: Studio): void {
   const { store, frameView, surfaceView } = studio;
   store.subscribe(['model', 'selection'], (state, topics) => {
     if (state.model) {
-      frameView.setModel(state.model, state.selectedVertex, state.selectedFrames);
+      frameView.setModel(state.model, state.selectedVertex, state.selectedFrames, state.selectedVertices);
       surfaceView.selectOverlay(state.selectedFrames);
     } else if (topics.has('model') && state.view) {
       frameView.showCurves(state.view.curves, state.view.spines);

@@ -148,7 +148,9 @@ export class Viewport {
     const center = box.getCenter(new THREE.Vector3());
     const size = Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3);
     const toCamera = (direction ?? this.viewDirection()).clone().normalize();
-    const right = new THREE.Vector3().crossVectors(this.camera.up, toCamera).normalize();
+    const right = new THREE.Vector3().crossVectors(this.camera.up, toCamera);
+    if (right.lengthSq() < 1e-20) right.set(1, 0, 0); // looking straight along up (top, bottom)
+    right.normalize();
     const up = new THREE.Vector3().crossVectors(toCamera, right);
     const tanV = Math.tan(THREE.MathUtils.degToRad(this.camera.fov) / 2);
     const tanH = tanV * this.camera.aspect;
@@ -461,7 +463,7 @@ class Handles {
     this.object.renderOrder = 3;
   }
 
-  update(model: Model, selected: number | null): void {
+  update(model: Model, selected: number | null, also: readonly number[] = []): void {
     const n = model.vertices.length;
     const g = this.object.geometry;
     if (this.sizes.length !== n) {
@@ -473,7 +475,8 @@ class Handles {
       g.setAttribute('handleColor', new THREE.BufferAttribute(this.colors, 3));
     }
     model.vertices.forEach((p, i) => this.positions.set(p, 3 * i));
-    for (let i = 0; i < n; ++i) this.style(i, i === selected);
+    const picked = new Set(also);
+    for (let i = 0; i < n; ++i) this.style(i, i === selected || picked.has(i));
     for (const name of ['position', 'handleSize', 'handleColor']) g.getAttribute(name).needsUpdate = true;
   }
 
@@ -518,12 +521,17 @@ export class FrameView extends Viewport {
     this.scene.add(grid);
   }
 
-  setModel(model: Model, selectedVertex: number | null, selectedFrames: ReadonlySet<number>): void {
+  setModel(
+    model: Model,
+    selectedVertex: number | null,
+    selectedFrames: ReadonlySet<number>,
+    selectedVertices: readonly number[] = [],
+  ): void {
     const resized = !this.model || this.model.vertices.length !== model.vertices.length;
     this.model = model;
     this.showEditable(true);
     if (resized) this.placeGrid(modelBox(model));
-    this.handles.update(model, selectedVertex);
+    this.handles.update(model, selectedVertex, selectedVertices);
     this.lines.update(model, selectedFrames);
     this.invalidate();
   }
@@ -640,6 +648,19 @@ export class FrameView extends Viewport {
     return { x: mid.x + (3 * (centre.x - mid.x)) / len, y: mid.y + (3 * (centre.y - mid.y)) / len };
   }
 
+  /** The vertices whose handles lie inside a client rectangle (a box selection). */
+  verticesInBox(x0: number, y0: number, x1: number, y1: number): number[] {
+    if (!this.model) return [];
+    const [left, right] = [Math.min(x0, x1), Math.max(x0, x1)];
+    const [top, bottom] = [Math.min(y0, y1), Math.max(y0, y1)];
+    const out: number[] = [];
+    this.model.vertices.forEach((v, i) => {
+      const s = this.toClient(new THREE.Vector3(...v));
+      if (s.visible && s.x >= left && s.x <= right && s.y >= top && s.y <= bottom) out.push(i);
+    });
+    return out;
+  }
+
   /** Where a drag of `vertex` to a client point lands: on the plane through the vertex
    * that faces the camera. */
   dragTarget(vertex: Vec3, x: number, y: number): Vec3 | null {
@@ -733,6 +754,29 @@ export class SurfaceView extends Viewport {
     this.mesh.frustumCulled = false;
     this.scene.add(this.mesh);
     this.scene.add(this.overlay.object);
+  }
+
+  /** The triangle of the surface first hit under a client point (the one in front: what
+   * is hidden behind the surface is never picked), or null. */
+  triangleAt(clientX: number, clientY: number): number | null {
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
+    const raycaster = new THREE.Raycaster();
+    raycaster.setFromCamera(ndc, this.camera);
+    this.mesh.geometry.computeBoundingSphere(); // deltas move vertices without updating it
+    const hit = raycaster.intersectObject(this.mesh, false)[0];
+    return hit?.faceIndex ?? null;
+  }
+
+  /** A client point on triangle `t` of the surface (its centroid; tests). */
+  triangleScreen(t: number): { x: number; y: number } {
+    const g = this.mesh.geometry;
+    const index = g.getIndex()!;
+    const position = g.getAttribute('position');
+    const c = new THREE.Vector3();
+    for (let k = 0; k < 3; ++k) c.add(new THREE.Vector3().fromBufferAttribute(position, index.getX(3 * t + k)));
+    const s = this.toClient(c.divideScalar(3));
+    return { x: s.x, y: s.y };
   }
 
   setMesh(data: MeshData): void {

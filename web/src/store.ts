@@ -16,6 +16,9 @@ export interface State {
   /** An autosave differs from the file (offer to recover it). */
   recovery: boolean;
   selectedVertex: number | null;
+  /** The selected vertices in the order they were picked (the modeller's tools read the
+   * order: add-frame's corners, weld's kept vertex); holds selectedVertex when that is set. */
+  selectedVertices: number[];
   selectedFrames: Set<number>;
   /** The selected force of a single selected frame (index in its forces). */
   selectedForce: number;
@@ -48,6 +51,7 @@ export function initialState(): State {
     status: null,
     recovery: false,
     selectedVertex: null,
+    selectedVertices: [],
     selectedFrames: new Set(),
     selectedForce: 0,
     mesh: null,

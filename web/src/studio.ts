@@ -134,6 +134,7 @@ export class Studio {
       s.recovery = m.recovery;
       if (changedTopology) {
         s.selectedVertex = null;
+        s.selectedVertices = [];
         s.selectedFrames = new Set();
         s.selectedForce = 0;
       }

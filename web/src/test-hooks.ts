@@ -62,6 +62,16 @@ export function installTestHooks(studio: Studio): void {
       const p = surfaceView.overlay.object.geometry.getAttribute('position');
       return p ? Array.from(p.array as Float32Array) : [];
     },
+    /** A client point on the surface inside frame `f`'s patch (the modeller's picking). */
+    patchScreen: async (f: number) => {
+      const mesh = store.state.mesh;
+      if (!mesh) return null;
+      const { ids } = await api.patchIds(mesh.resolution);
+      const mine = [...ids.keys()].filter((t) => ids[t] === f);
+      return mine.length ? surfaceView.triangleScreen(mine[Math.floor(mine.length / 2)]) : null;
+    },
+    /** The selection: vertices in pick order, frames. */
+    selection: () => ({ vertices: [...store.state.selectedVertices], frames: [...store.state.selectedFrames].sort((a, b) => a - b) }),
     /** The page's surface mesh positions, flat xyz. */
     meshPositions: () => Array.from(store.state.mesh?.positions ?? []),
   };

@@ -42,7 +42,7 @@ function askUnsaved(path: string): Promise<Choice> {
   });
 }
 
-export function mountToolbar(studio: Studio): { refreshFiles: () => Promise<void> } {
+export function mountToolbar(studio: Studio): { refreshFiles: () => Promise<void>; mayLeave: () => Promise<boolean> } {
   const { store, surfaceView } = studio;
 
   /** Whether the current model may be left: saved, or the user chose to save or discard
@@ -170,5 +170,5 @@ export function mountToolbar(studio: Studio): { refreshFiles: () => Promise<void
     if (store.state.status?.dirty) ev.preventDefault();
   });
 
-  return { refreshFiles };
+  return { refreshFiles, mayLeave };
 }

@@ -1,0 +1,58 @@
+// The modeller's edits from the selection: which sides are boundary edges, which the
+// selection names, and what each tool asks for when the selection does not fit.
+import { describe, expect, it } from 'vitest';
+import type { Model } from '../src/api';
+import { addFrameEdit, boundarySides, extrudeEdit, framesEdit, selectedBoundarySides, splitEdit, toggled, weldEdit } from '../src/structure';
+
+/** Two frames side by side on a 5 × 3 lattice (vertex j * 5 + i), sharing the column i = 2. */
+function twoFrames(): Model {
+  const vertices: [number, number, number][] = [];
+  for (let j = 0; j < 3; ++j) for (let i = 0; i < 5; ++i) vertices.push([i, j, 0]);
+  const at = (i: number, j: number) => j * 5 + i;
+  const frame = (i: number) => ({
+    vertices: [at(i, 0), at(i + 1, 0), at(i + 2, 0), at(i + 2, 1), at(i + 2, 2), at(i + 1, 2), at(i, 2), at(i, 1)],
+  });
+  return { type: 'vertex-frames', vertices, frames: [frame(0), frame(2)] };
+}
+
+describe('structure edits from the selection', () => {
+  it('finds the boundary sides: all but the shared one', () => {
+    const sides = boundarySides(twoFrames());
+    expect(sides).toHaveLength(6);
+    expect(sides).not.toContainEqual({ frame: 0, side: 1 });
+    expect(sides).not.toContainEqual({ frame: 1, side: 3 });
+  });
+
+  it('names the boundary sides whose corners are selected, never the shared side', () => {
+    const m = twoFrames();
+    expect(selectedBoundarySides(m, [4, 14])).toEqual([{ frame: 1, side: 1 }]);
+    expect(selectedBoundarySides(m, [2, 12])).toEqual([]); // shared: not a boundary edge
+    expect(selectedBoundarySides(m, [0, 2, 4])).toEqual([{ frame: 0, side: 0 }, { frame: 1, side: 0 }]);
+    expect(extrudeEdit(m, [0, 2, 4])).toEqual({ edit: { op: 'extrude', edges: [{ frame: 0, side: 0 }, { frame: 1, side: 0 }] } });
+    expect(extrudeEdit(m, [7])).toHaveProperty('problem', expect.stringMatching(/^Extrude: select both corners/));
+  });
+
+  it('welds two vertices in pick order, or two boundary edges', () => {
+    const m = twoFrames();
+    expect(weldEdit(m, [14, 0])).toEqual({ edit: { op: 'weld-vertices', vertices: [14, 0] } });
+    expect(weldEdit(m, [0, 10, 4, 14])).toEqual({ edit: { op: 'weld-edges', edges: [{ frame: 0, side: 3 }, { frame: 1, side: 1 }] } });
+    expect(weldEdit(m, [0, 1, 2])).toHaveProperty('problem', expect.stringContaining('3 vertices'));
+  });
+
+  it('needs 4 corners for a frame, one frame to split, some frames to delete or flip', () => {
+    expect(addFrameEdit([1, 2, 3, 4])).toEqual({ edit: { op: 'add-frame', corners: [1, 2, 3, 4] } });
+    expect(addFrameEdit([1, 2, 3])).toHaveProperty('problem', expect.stringContaining('(3 selected)'));
+    expect(splitEdit(new Set([1]), 'u')).toEqual({ edit: { op: 'split-frame', frame: 1, parts: 2, across: 'u' } });
+    expect(splitEdit(new Set([1]), '4')).toEqual({ edit: { op: 'split-frame', frame: 1, parts: 4 } });
+    expect(splitEdit(new Set([0, 1]), '4')).toHaveProperty('problem', expect.stringContaining('(2 selected)'));
+    expect(framesEdit('delete-frames', new Set([2, 0]))).toEqual({ edit: { op: 'delete-frames', frames: [0, 2] } });
+    expect(framesEdit('flip-frames', new Set())).toHaveProperty('problem', 'Flip: select frames first');
+  });
+
+  it('toggles a selection keeping the pick order', () => {
+    expect(toggled([3, 1], 2, 'toggle')).toEqual([3, 1, 2]);
+    expect(toggled([3, 1, 2], 1, 'toggle')).toEqual([3, 2]);
+    expect(toggled([3, 1], 1, 'add')).toEqual([3, 1]);
+    expect(toggled([3, 1], 3, 'remove')).toEqual([1]);
+  });
+});
