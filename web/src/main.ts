@@ -8,6 +8,7 @@ import { mountAnalysis } from './analysis';import { mountDragTool } from './drag
 import { mountKeys } from './keys';
 import { mountPanel } from './panel';
 import { mountSceneSync } from './scene-sync';
+import { mountSolver } from './solver';
 import { mountStatusBar } from './statusbar';
 import { Studio } from './studio';
 import { mountToolbar } from './toolbar';
@@ -24,6 +25,7 @@ mountPanel(studio);
 mountTransform(studio);
 const toolbar = mountToolbar(studio);
 mountAnalysis(studio);
+mountSolver(studio);
 mountKeys(studio, mountViews(studio));
 
 function frame(): void {
