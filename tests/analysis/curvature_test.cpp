@@ -29,13 +29,19 @@ Curvature monge(double fu, double fv, double fuu, double fuv, double fvv) {
   return {-h, (fuu * fvv - fuv * fuv) / (w * w)};
 }
 
-TEST(Curvature, MongePatchMatchesTheClosedForm) {
-  // S = (u, v, a u² + b v² + c uv + d u²v + e uv² + g u³): every polynomial term of a patch.
-  const double a = 0.7, b = -0.4, c = 0.3, d = 0.2, e = -0.5, g = 0.6;
+/// The plane S = (u, v, 0): the start of every Monge patch below.
+VertexFramePatch planePatch() {
   VertexFramePatch patch;
   patch.c.fill(Vec3::Zero());
   patch.c[1] = Vec3(1, 0, 0);
   patch.c[4] = Vec3(0, 1, 0);
+  return patch;
+}
+
+TEST(Curvature, MongePatchMatchesTheClosedForm) {
+  // S = (u, v, a u² + b v² + c uv + d u²v + e uv² + g u³): every polynomial term of a patch.
+  const double a = 0.7, b = -0.4, c = 0.3, d = 0.2, e = -0.5, g = 0.6;
+  VertexFramePatch patch = planePatch();
   patch.c[2] = Vec3(0, 0, a);
   patch.c[5] = Vec3(0, 0, b);
   patch.c[7] = Vec3(0, 0, c);
@@ -59,9 +65,7 @@ TEST(Curvature, MongePatchMatchesTheClosedForm) {
   // A bowl z = (u² + v²)/(2R) at its bottom, normal up (toward its centre of curvature):
   // H = −1/R in the studio's sign (a sphere seen from outside is +1/R), K = 1/R².
   const double r = 2.5;
-  patch.c.fill(Vec3::Zero());
-  patch.c[1] = Vec3(1, 0, 0);
-  patch.c[4] = Vec3(0, 1, 0);
+  patch = planePatch();
   patch.c[2] = patch.c[5] = Vec3(0, 0, 1 / (2 * r));
   const Curvature bowl = patchCurvature(patch, 0, 0, Vec3(0, 0, 1));
   EXPECT_NEAR(bowl.mean, -1 / r, kCurvatureTol);
@@ -71,10 +75,7 @@ TEST(Curvature, MongePatchMatchesTheClosedForm) {
 TEST(Curvature, ASculptingForceAddsItsSineToTheClosedForm) {
   // S = (u, v, k sin(π(u−u0)/Lu) sin(π(v−v0)/Lv)) inside the region, a plane outside.
   const double k = 0.35, u0 = 0.2, u1 = 0.8, v0 = 0.1, v1 = 0.7;
-  VertexFramePatch patch;
-  patch.c.fill(Vec3::Zero());
-  patch.c[1] = Vec3(1, 0, 0);
-  patch.c[4] = Vec3(0, 1, 0);
+  VertexFramePatch patch = planePatch();
   patch.forces.push_back({Vec3(0, 0, k), Region{u0, u1, v0, v1}});
   const double wu = std::numbers::pi / (u1 - u0), wv = std::numbers::pi / (v1 - v0);
   for (double u : {0.3, 0.5, 0.75})
