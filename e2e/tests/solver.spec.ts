@@ -28,9 +28,9 @@ function moved(before: number[], after: number[], box: { min: number[]; max: num
   return most;
 }
 
-/** Sets a1 (x, y, z) of the selected frame through its sliders; the surface it gives. */
+/** Sets a1.x of the selected frame through its slider; the surface it gives. */
 async function setA1(page: Page, value: string): Promise<number[]> {
-  for (const c of ['x', 'y', 'z']) await page.getByTestId(`a1-${c}`).fill(value);
+  await page.getByTestId('a1-x').fill(value);
   await settle(page);
   await meshUpToDate(page);
   await hooks(page, 'meshIdle');
@@ -41,6 +41,7 @@ test.describe('the local solver', () => {
   test.use({ example: 'mug.json' });
 
   test('with the local solver seeded at the selected frame, a1 moves its patch visibly more', async ({ page, studio }) => {
+    test.setTimeout(120_000); // four surfaces of the mug at Res 24, an undo, on a shared machine
     await openStudio(page, studio);
     const model = (await studio.state()).model;
     const corners = model.frames[FRAME].vertices.map((v: number) => model.vertices[v]);
@@ -58,7 +59,7 @@ test.describe('the local solver', () => {
     const global0: number[] = await hooks(page, 'meshPositions');
     const global1 = await setA1(page, '0.1');
     const dGlobal = moved(global0, global1, box);
-    for (let undo = (await studio.state()).undo; undo > 0; --undo) await page.getByTestId('undo').click();
+    await page.getByTestId('undo').click();
     await expect.poll(async () => (await studio.state()).undo).toBe(0);
     await meshUpToDate(page);
 
@@ -71,7 +72,7 @@ test.describe('the local solver', () => {
     expect(moved(global0, local0, { min: [-Infinity, -Infinity, -Infinity], max: [Infinity, Infinity, Infinity] })).toBeGreaterThan(0);
     const local1 = await setA1(page, '0.1');
     const dLocal = moved(local0, local1, box);
-    console.log(`a1 1 -> 0.1 on frame ${FRAME}: its patch moved ${dGlobal.toExponential(3)} (global), ${dLocal.toExponential(3)} (local)`);
+    console.log(`a1.x 1 -> 0.1 on frame ${FRAME}: its patch moved ${dGlobal.toExponential(3)} (global), ${dLocal.toExponential(3)} (local)`);
     expect(dLocal).toBeGreaterThan(MIN_RATIO * dGlobal);
     expect(await hooks(page, 'meshMatchesServer')).toBe(true);
     await page.waitForTimeout(300);

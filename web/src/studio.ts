@@ -103,11 +103,11 @@ export class Studio {
    * resolution's delta base); 0 before the first mesh. */
   private preview = 0;
 
-  /** The resolution a gesture previews at, from the triangles of the mesh shown (they grow
-   * as (resolution − 1)²). */
+  /** The resolution a gesture previews at, from the triangles of the full-resolution mesh
+   * held, else of the mesh shown (they grow as (resolution − 1)²). */
   private previewFor(): number {
     const full = this.fullResolution();
-    const mesh = this.store.state.mesh;
+    const mesh = this.meshes.heldAt(full) ?? this.store.state.mesh;
     if (!mesh || mesh.resolution < 2) return 0;
     const fullTriangles = mesh.triangleCount * ((full - 1) / (mesh.resolution - 1)) ** 2;
     return previewResolution(full, fullTriangles);
