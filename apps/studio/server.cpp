@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -37,6 +38,7 @@
 #include "http_error.hpp"
 #include "journal.hpp"
 #include "mesh_wire.hpp"
+#include "pdesurf/analysis.hpp"
 #include "pdesurf/atomic_file.hpp"
 #include "pdesurf/cad_export.hpp"
 #include "pdesurf/edit_io.hpp"
@@ -59,6 +61,9 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxBody = 1 << 20;
 constexpr std::uint32_t kMinResolution = 2, kMaxMeshResolution = 257, kMaxExportResolution = 4097;
 constexpr std::uint32_t kDefaultMeshResolution = 16, kDefaultExportResolution = 33;
+/// Resolutions whose last mesh the server keeps as a delta base: a gesture's preview and the
+/// chosen resolution (web/src/preview.ts).
+constexpr std::size_t kMeshSlots = 2;
 
 /// The per-launch token's size: 192 bits, as Jupyter's (the issue asks for at least 128).
 constexpr std::size_t kTokenBytes = 24;
@@ -406,15 +411,46 @@ class StudioServer::Impl {
     return {{"curves", lines(view.curves)}, {"spines", lines(view.spines)}};
   }
 
-  /// The surface mesh of whatever model is open, for the page, through the ModelTessellator
-  /// (a drag keeps the topology, so only positions and normals are rewritten).
-  const Mesh& meshOf(std::uint32_t resolution, const SolveOptions& options, double& solveMs,
-                     double& tessMs, double& gap) {
+  /// The page's meshes at one resolution: the tessellator that makes them (a drag keeps its
+  /// layout, so only positions and normals are rewritten) and the last one sent, the base of
+  /// the next delta at this resolution. A gesture's preview and the chosen resolution each
+  /// keep a slot, so the release comes back as a delta against the last full-resolution mesh.
+  struct MeshSlot {
+    std::uint32_t resolution = 0;  // 0: unused
+    ModelTessellator tessellator;
+    Mesh sent;
+    std::uint64_t sentLayout = 0;  // the tessellator's layout of `sent`
+    std::uint64_t sentId = 0;      // X-Mesh-Id of `sent`
+    std::uint64_t used = 0;        // when it last served (the least recent is reused)
+  };
+
+  /// The slot of `resolution`, else the least recently used one, emptied for it.
+  MeshSlot& meshSlot(std::uint32_t resolution) {
+    MeshSlot* pick = &meshSlots_.front();
+    for (MeshSlot& slot : meshSlots_) {
+      if (slot.resolution == resolution) {
+        pick = &slot;
+        break;
+      }
+      if (slot.used < pick->used) pick = &slot;
+    }
+    if (pick->resolution != resolution) {
+      *pick = MeshSlot{};
+      pick->resolution = resolution;
+    }
+    pick->used = ++meshClock_;
+    return *pick;
+  }
+
+  /// The surface mesh of whatever model is open, for the page, through the slot's
+  /// ModelTessellator.
+  const Mesh& meshOf(MeshSlot& slot, const SolveOptions& options, double& solveMs, double& tessMs,
+                     double& gap) {
     auto t0 = Clock::now();
     const SolvedModel& solved = session_->solved(options);  // view-only: solved when changed
     solveMs = msSince(t0);
     t0 = Clock::now();
-    const Mesh& mesh = tessellator_.tessellate(solved, {resolution});
+    const Mesh& mesh = slot.tessellator.tessellate(solved, {slot.resolution});
     tessMs = msSince(t0);
     gap = largestC0Gap(solved);
     return mesh;
@@ -479,6 +515,50 @@ class StudioServer::Impl {
     path_ = path;
     savedRevision_ = revision();
     recovery_ = false;
+  }
+
+  /// What a mesh request asks for (GET /api/mesh, or an edit with `?mesh=1`).
+  struct MeshRequest {
+    std::uint32_t resolution = kDefaultMeshResolution;
+    std::uint64_t base = 0;  // X-Mesh-Id of the client's mesh at this resolution, 0: none
+    SolveOptions options;
+  };
+
+  /// Reads a mesh request's parameters (400 naming the bad one), before anything changes.
+  MeshRequest meshRequest(const httplib::Request& req) const {
+    MeshRequest m;
+    if (req.has_param("resolution"))
+      m.resolution = parseUint(req.get_param_value("resolution"), kMinResolution,
+                               kMaxMeshResolution, "resolution");
+    if (req.has_param("base"))
+      m.base = parseUint(req.get_param_value("base"), 1, std::numeric_limits<std::uint32_t>::max(),
+                         "base");
+    m.options = solveOptions(req);
+    return m;
+  }
+
+  /// Answers with the surface mesh of the open model: whole, or, when `base` is the last
+  /// mesh sent at this resolution and only positions and normals changed, a delta against it.
+  void sendMesh(const MeshRequest& request, httplib::Response& res) {
+    const auto [resolution, base, options] = request;
+    double solveMs = 0, tessMs = 0, gap = 0;
+    MeshSlot& slot = meshSlot(resolution);
+    const Mesh& mesh = meshOf(slot, options, solveMs, tessMs, gap);
+    // Same triangles: the tessellator's layout says so (for vertex frames
+    // without comparing the index buffers: the drag's hot path).
+    const std::uint64_t layout = slot.tessellator.layoutVersion();
+    const bool delta = base != 0 && base == slot.sentId && layout == slot.sentLayout;
+    res.set_content(delta ? encodeMeshDelta(slot.sent, mesh, revision(), resolution)
+                          : encodeMesh(mesh, revision(), resolution),
+                    "application/octet-stream");
+    slot.sent = mesh;  // what the client now has (copies reuse sent's buffers)
+    slot.sentLayout = layout;
+    slot.sentId = ++meshCounter_;
+    if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
+    res.set_header("X-Mesh-Id", std::to_string(slot.sentId));
+    res.set_header("X-Solve-Ms", fmt::format("{:.3f}", solveMs));
+    res.set_header("X-Tessellate-Ms", fmt::format("{:.3f}", tessMs));
+    res.set_header("X-C0-Gap", fmt::format("{}", gap));
   }
 
   SolveOptions solveOptions(const httplib::Request& req) const {
@@ -602,13 +682,27 @@ class StudioServer::Impl {
                   sendJson(res, out);
                 }));
 
-    server_.Post("/api/edit", guarded([this](const httplib::Request& req, httplib::Response& res) {
-                   requireEditable();
-                   const GroupedEdit edit = parseEdit(req.body, *session_->frames());
-                   session_->apply(edit.edit, edit.group);
-                   autosave();
-                   sendJson(res, status());
-                 }));
+    server_.Post(
+        "/api/edit", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          requireEditable();
+          const GroupedEdit edit = parseEdit(req.body, *session_->frames());
+          // `?mesh=1` (and the mesh's parameters): the mesh after the edit, with the
+          // status in X-Status: one round trip for a drag step instead of two.
+          std::optional<MeshRequest> mesh;
+          if (req.has_param("mesh")) {
+            if (req.get_param_value("mesh") != "1")
+              fail(400, fmt::format("mesh: expected 1, found \"{}\"", req.get_param_value("mesh")));
+            mesh = meshRequest(req);
+          }
+          session_->apply(edit.edit, edit.group);
+          autosave();
+          if (mesh) {
+            sendMesh(*mesh, res);
+            res.set_header("X-Status", status().dump());
+          } else {
+            sendJson(res, status());
+          }
+        }));
 
     // Moves, turns or scales the whole model, of any type: one undo step.
     server_.Post("/api/transform",
@@ -637,35 +731,7 @@ class StudioServer::Impl {
                  }));
 
     server_.Get("/api/mesh", guarded([this](const httplib::Request& req, httplib::Response& res) {
-                  std::uint32_t resolution = kDefaultMeshResolution;
-                  if (req.has_param("resolution"))
-                    resolution = parseUint(req.get_param_value("resolution"), kMinResolution,
-                                           kMaxMeshResolution, "resolution");
-                  // The mesh the client already has (X-Mesh-Id of an earlier answer): when
-                  // it is the last one sent and only positions and normals changed, the
-                  // answer is a delta against it.
-                  std::uint64_t base = 0;
-                  if (req.has_param("base"))
-                    base = parseUint(req.get_param_value("base"), 1,
-                                     std::numeric_limits<std::uint32_t>::max(), "base");
-                  const SolveOptions options = solveOptions(req);
-                  double solveMs = 0, tessMs = 0, gap = 0;
-                  const Mesh& mesh = meshOf(resolution, options, solveMs, tessMs, gap);
-                  // Same triangles: the tessellator's layout says so (for vertex frames
-                  // without comparing the index buffers: the drag's hot path).
-                  const std::uint64_t layout = tessellator_.layoutVersion();
-                  const bool delta = base != 0 && base == sentId_ && layout == sentLayout_;
-                  res.set_content(delta ? encodeMeshDelta(sent_, mesh, revision(), resolution)
-                                        : encodeMesh(mesh, revision(), resolution),
-                                  "application/octet-stream");
-                  sent_ = mesh;  // what the client now has (copies reuse sent_'s buffers)
-                  sentLayout_ = layout;
-                  sentId_ = ++meshCounter_;
-                  if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
-                  res.set_header("X-Mesh-Id", std::to_string(sentId_));
-                  res.set_header("X-Solve-Ms", fmt::format("{:.3f}", solveMs));
-                  res.set_header("X-Tessellate-Ms", fmt::format("{:.3f}", tessMs));
-                  res.set_header("X-C0-Gap", fmt::format("{}", gap));
+                  sendMesh(meshRequest(req), res);
                 }));
 
     // The true boundary curves of every patch (the surface view's frame overlay): float32
@@ -687,16 +753,28 @@ class StudioServer::Impl {
     server_.Get("/api/patch-ids",
                 guarded([this](const httplib::Request& req, httplib::Response& res) {
                   requireEditable();
-                  std::uint32_t resolution = kDefaultMeshResolution;
-                  if (req.has_param("resolution"))
-                    resolution = parseUint(req.get_param_value("resolution"), kMinResolution,
-                                           kMaxMeshResolution, "resolution");
-                  const Mesh mesh = tessellate(session_->solved(solveOptions(req)), {resolution});
+                  const MeshRequest request = meshRequest(req);
+                  const Mesh mesh =
+                      tessellate(session_->solved(request.options), {request.resolution});
                   res.set_content(std::string(reinterpret_cast<const char*>(mesh.patchIds.data()),
                                               4 * mesh.patchIds.size()),
                                   "application/octet-stream");
                   res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
                 }));
+    // The analytic mean and Gaussian curvature at every vertex of the mesh GET /api/mesh
+    // gives for the same parameters: float32 [vertex][H, K] (analysis.hpp: meshCurvatures).
+    server_.Get(
+        "/api/curvature", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          requireEditable();
+          const MeshRequest request = meshRequest(req);
+          const VertexFrameSurface& surface = *session_->solved(request.options).frames();
+          const Mesh mesh = tessellate(surface, {request.resolution});
+          const std::vector<float> values = meshCurvatures(surface, mesh, request.resolution);
+          res.set_content(std::string(reinterpret_cast<const char*>(values.data()),
+                                      sizeof(float) * values.size()),
+                          "application/octet-stream");
+          res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+        }));
 
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
                   std::vector<std::string> files;
@@ -851,16 +929,15 @@ class StudioServer::Impl {
   std::uint64_t base_ = 0;
   std::uint64_t savedRevision_ = 0;
   bool recovery_ = false;
-  // The last mesh sent (GET /api/mesh) and its id; ids are never reused while the server
-  // runs, so a client's `base` names exactly one mesh, across opened models too.
-  ModelTessellator tessellator_;  // the page's meshes
-  Mesh sent_;                     // the last mesh sent (the base of a delta)
-  std::uint64_t sentLayout_ = 0;  // the tessellator's layout of sent_
-  std::string fileText_;          ///< the model's file as read or saved last
-  std::string fileModel_;         ///< serializeModel of that file's model
+  // The page's meshes (GET /api/mesh), one slot per resolution it last asked for; mesh ids
+  // are never reused while the server runs, so a client's `base` names exactly one mesh,
+  // across resolutions and opened models too.
+  std::array<MeshSlot, kMeshSlots> meshSlots_;
+  std::uint64_t meshClock_ = 0;
+  std::string fileText_;   ///< the model's file as read or saved last
+  std::string fileModel_;  ///< serializeModel of that file's model
   bool opened_ = false;
   Journal journal_;
-  std::uint64_t sentId_ = 0;
   std::uint64_t meshCounter_ = 0;
 };
 

@@ -20,7 +20,7 @@
 import { spawn, execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
 import { appendFileSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir, cpus } from 'node:os';
+import { tmpdir, cpus, loadavg } from 'node:os';
 import path from 'node:path';
 import { createInterface } from 'node:readline';
 import { fileURLToPath } from 'node:url';
@@ -113,7 +113,20 @@ function instrument() {
     rec.headers = performance.now();
     if (url.startsWith('/api/edit')) {
       T.edits.push(rec);
-      res.clone().json().then((s) => (rec.revision = s.revision), () => {});
+      const status = res.headers.get('X-Status');
+      if (status === null) {
+        res.clone().json().then((s) => (rec.revision = s.revision), () => {});
+        return res;
+      }
+      // An edit that brings its mesh (?mesh=1): the mesh record starts when its headers
+      // are in (no second request: "edit answered -> GET /api/mesh sent" and "mesh
+      // request -> headers" are 0).
+      rec.revision = JSON.parse(status).revision;
+      const mesh = { sent: rec.headers, headers: rec.headers };
+      T.meshes.push(mesh);
+      mesh.solveMs = Number(res.headers.get('X-Solve-Ms'));
+      mesh.tessellateMs = Number(res.headers.get('X-Tessellate-Ms'));
+      pending.set(res, mesh);
       return res;
     }
     T.meshes.push(rec);
@@ -174,7 +187,8 @@ async function main() {
   const { child, origin, token } = started;
   const url = PREVIEW ? started.url : `${started.url}&preview=0`;
   const browser = await chromium.launch(LAUNCH);
-  const results = { model: MODEL ? { file: MODEL } : { rows: ROWS, cols: COLS, frames: ROWS * COLS }, resolution: Number(RESOLUTION), preview: PREVIEW };
+  const loadStart = loadavg();
+  const results = { loadStart, model: MODEL ? { file: MODEL } : { rows: ROWS, cols: COLS, frames: ROWS * COLS }, resolution: Number(RESOLUTION), preview: PREVIEW };
   try {
     const page = await browser.newPage({ viewport: { width: 1440, height: 860 } });
     const errors = [];
@@ -363,7 +377,7 @@ async function main() {
   console.log('  split (medians, p95):');
   const row = (label, k) => console.log(`    ${label.padEnd(44)} ${st[k].p50.toFixed(2).padStart(7)} ${st[k].p95.toFixed(2).padStart(7)} ms`);
   row('pointer -> POST /api/edit sent', 'toEdit');
-  row('edit round trip', 'editRtt');
+  row('edit round trip (with the mesh, ?mesh=1)', 'editRtt');
   row('edit answered -> GET /api/mesh sent', 'toMesh');
   row('mesh request -> headers (server solve+tess)', 'meshWait');
   row('  of which X-Solve-Ms', 'solveMs');
@@ -376,6 +390,7 @@ async function main() {
     `${sm.newFrames} new surface frames = ${sm.meshesPerSecond.toFixed(1)}/s):`);
   if (sm) console.log(`  pointer event -> first rAF showing it          ${fmt(sm.latency)}`);
   if (results.release) console.log(`\nRelease -> first frame drawn at Res ${RESOLUTION} (${results.release.n} drags): ${fmt(results.release)}`);
+  console.log(`\nLoad average (1, 5, 15 min) at the start: ${results.loadStart.map((x) => x.toFixed(2)).join(', ')}; at the end: ${loadavg().map((x) => x.toFixed(2)).join(', ')}`);
   console.log(`\nIdle page: one frame every ${results.idleFrame.p50.toFixed(1)} ms (p50 rAF interval, nothing changing)`);
   const met = st.total.p95 <= 16;
   console.log(`\nTarget p95 <= 16 ms (one edit at a time): ${met ? 'MET' : 'NOT MET'} (p95 ${st.total.p95.toFixed(1)} ms)`);

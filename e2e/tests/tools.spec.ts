@@ -225,6 +225,8 @@ test.describe('analysis on the mug', () => {
     await page.screenshot({ path: shot('zebra-mug.png') });
 
     await page.getByTestId('curvature').selectOption('mean');
+    // From the analytic surface (GET /api/curvature), not the mesh estimate.
+    await expect.poll(async () => (await hooks(page, 'analysis')).analyticCurvature).toBe(true);
     a = await hooks(page, 'analysis');
     expect(a.material).toBe('curvature');
     expect(a.curvatureRange).toBeGreaterThan(0);
@@ -268,9 +270,12 @@ test.describe('analysis on the mug', () => {
       seen.add((await hooks(page, 'state')).resolution);
     }
     expect(Math.max(...seen)).toBeLessThan(24);
+    // The release: a delta against the last Res 24 mesh the page kept (apps/studio/README.md).
+    const deltas = (await hooks(page, 'state')).meshDeltas;
     await page.mouse.up();
     await expect.poll(async () => (await hooks(page, 'state')).resolution).toBe(24);
     await meshUpToDate(page);
+    expect((await hooks(page, 'state')).meshDeltas).toBeGreaterThan(deltas);
     expect(await hooks(page, 'meshMatchesServer')).toBe(true);
   });
 });

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "pdesurf/vertex_frames.hpp"
 
@@ -50,7 +51,31 @@ std::size_t coincidentVertices(const VertexFrameModel& model);
 /// each force), a shared force (f0 and its frame indices).
 std::size_t storageBytes(const VertexFrameModel& model);
 
+/// Mean and Gaussian curvature of the surface at a point, from its analytic first and second
+/// derivatives. `mean` takes the sign of the studio's colouring: positive where the surface
+/// bends away from its normal `n` (a sphere with outward normals: 1/R); K = 1/R² there.
+struct Curvature {
+  double mean = 0.0, gaussian = 0.0;
+};
+
+/// Below this (E G − F²)/(E + G)², the first fundamental form is taken as singular (a pole:
+/// a frame's edge collapsed to a point) and the curvature is taken just inside the patch,
+/// kPoleCurvatureStep toward its centre in each parameter.
+constexpr double kSingularMetric = 1e-12;
+constexpr double kPoleCurvatureStep = 1e-3;
+
+/// The curvature of `patch` at (u, v) for the normal direction `n` (only its side counts).
+Curvature patchCurvature(const VertexFramePatch& patch, double u, double v, const Vec3& n);
+
 struct Mesh;
+/// The analytic curvature at every vertex of `mesh`, the tessellation of `surface` at
+/// `resolution` samples per patch side (with patch ids and normals): each vertex's
+/// parameters on the patches of its triangles are those of the nearest sample of that
+/// patch's grid; a vertex shared by several patches takes the mean of their values (the
+/// surface is C0 there, the curvature may jump). Returns mean, Gaussian per vertex.
+std::vector<float> meshCurvatures(const VertexFrameSurface& surface, const Mesh& mesh,
+                                  std::uint32_t resolution);
+
 struct CrossSectionModel;
 /// The same convention for a polygon mesh (x y z per vertex, three indices per triangle:
 /// the seed's polygon models) and a cross-section model (a and the mode count, each curve's

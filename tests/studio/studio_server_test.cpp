@@ -307,6 +307,95 @@ TEST_F(StudioServerTest, MeshDeltaAgainstTheClientsMeshGivesTheNewMesh) {
   EXPECT_EQ(failure(get("/api/mesh?base=0")).first, 400);
 }
 
+TEST_F(StudioServerTest, ReleaseAfterAPreviewIsADeltaAgainstTheLastFullResolutionMesh) {
+  // The page holds the chosen resolution (9) and, during a gesture, a preview (5); each is
+  // the base of deltas at its resolution, so the release needs no whole mesh.
+  auto full0 = get("/api/mesh?resolution=9");
+  ASSERT_TRUE(full0 && full0->status == 200);
+  const std::string fullId = full0->get_header_value("X-Mesh-Id");
+  MeshData client = parseMesh(full0->body);
+
+  ASSERT_EQ(post("/api/edit", move(0, -0.1, -0.2, 0.4))->status, 200);
+  auto preview0 = get("/api/mesh?resolution=5&base=" + fullId);  // another resolution: whole
+  ASSERT_TRUE(preview0 && preview0->status == 200);
+  EXPECT_FALSE(preview0->has_header("X-Mesh-Base"));
+  const std::string previewId = preview0->get_header_value("X-Mesh-Id");
+  ASSERT_EQ(post("/api/edit", move(0, -0.2, -0.3, 0.5))->status, 200);
+  auto preview1 = get("/api/mesh?resolution=5&base=" + previewId);
+  ASSERT_TRUE(preview1 && preview1->status == 200);
+  EXPECT_EQ(preview1->get_header_value("X-Mesh-Base"), previewId);
+
+  // The release: a delta against the last mesh at 9, carrying that mesh's id.
+  auto release = get("/api/mesh?resolution=9&base=" + fullId);
+  ASSERT_TRUE(release && release->status == 200);
+  ASSERT_EQ(release->get_header_value("X-Mesh-Base"), fullId);
+  EXPECT_LT(release->body.size(), full0->body.size() / 2) << "a corner move changes a few patches";
+  applyDelta(client, release->body);
+  const MeshData expected = parseMesh(get("/api/mesh?resolution=9")->body);
+  EXPECT_EQ(client.revision, 2u);
+  EXPECT_EQ(client.positions, expected.positions);
+  EXPECT_EQ(client.normals, expected.normals);
+
+  // A base of the other resolution, or one that is no longer the last at its own, gets the
+  // whole mesh: no delta is ever made against a mesh the client may not hold.
+  for (const std::string& wrong : {previewId, fullId}) {
+    auto answer = get("/api/mesh?resolution=9&base=" + wrong);
+    ASSERT_TRUE(answer && answer->status == 200);
+    EXPECT_FALSE(answer->has_header("X-Mesh-Base")) << "base " << wrong;
+  }
+  // A third resolution takes the least recently used slot (5's): 9 keeps its base.
+  const std::string last9 = get("/api/mesh?resolution=9")->get_header_value("X-Mesh-Id");
+  ASSERT_EQ(get("/api/mesh?resolution=7")->status, 200);
+  EXPECT_EQ(get("/api/mesh?resolution=9&base=" + last9)->get_header_value("X-Mesh-Base"), last9);
+}
+
+TEST_F(StudioServerTest, AnEditCanAnswerWithTheMeshAfterIt) {
+  auto r0 = get("/api/mesh?resolution=9");
+  ASSERT_TRUE(r0 && r0->status == 200);
+  const std::string id0 = r0->get_header_value("X-Mesh-Id");
+  MeshData client = parseMesh(r0->body);
+
+  // One round trip: the edit's status in X-Status, the mesh after it (a delta) as the body.
+  auto r1 = post("/api/edit?mesh=1&resolution=9&base=" + id0, move(0, -0.1, -0.2, 0.4));
+  ASSERT_TRUE(r1 && r1->status == 200) << (r1 ? r1->body : "");
+  const Json status = Json::parse(r1->get_header_value("X-Status"));
+  EXPECT_EQ(status["revision"], 1);
+  EXPECT_EQ(status["undo"], 1);
+  ASSERT_EQ(r1->get_header_value("X-Mesh-Base"), id0);
+  applyDelta(client, r1->body);
+  const MeshData expected = parseMesh(get("/api/mesh?resolution=9")->body);
+  EXPECT_EQ(client.revision, 1u);
+  EXPECT_EQ(client.positions, expected.positions);
+  EXPECT_EQ(client.normals, expected.normals);
+
+  // A bad mesh parameter is refused before the edit is applied: nothing changes.
+  for (const char* bad : {"?mesh=1&resolution=1", "?mesh=1&solver=magic", "?mesh=2"}) {
+    const auto [code, message] =
+        failure(post(std::string("/api/edit") + bad, move(0, 0.3, 0.3, 0.3)));
+    EXPECT_EQ(code, 400) << bad;
+    EXPECT_FALSE(message.empty()) << bad;
+  }
+  EXPECT_EQ(model()["revision"], 1);
+}
+
+TEST_F(StudioServerTest, CurvatureHasTwoValuesForEveryVertexOfTheMesh) {
+  ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.8))->status, 200);  // bend the flat grid
+  const MeshData mesh = parseMesh(get("/api/mesh?resolution=9")->body);
+  const auto r = get("/api/curvature?resolution=9");
+  ASSERT_TRUE(r && r->status == 200);
+  EXPECT_EQ(r->get_header_value("X-Revision"), "1");
+  ASSERT_EQ(r->body.size(), 8 * std::size_t{mesh.vertexCount});
+  std::vector<float> values(2 * mesh.vertexCount);
+  std::memcpy(values.data(), r->body.data(), r->body.size());
+  float largest = 0;
+  for (float x : values) {
+    ASSERT_TRUE(std::isfinite(x));
+    largest = std::max(largest, std::abs(x));
+  }
+  EXPECT_GT(largest, 0.0f) << "the moved vertex bends the surface";
+  EXPECT_EQ(failure(get("/api/curvature?resolution=1")).first, 400);
+}
+
 TEST_F(StudioServerTest, DragUndoesInOneStep) {
   const Json original = model()["model"];
   for (int i = 0; i < 10; ++i) {

@@ -1,6 +1,7 @@
 // Surface analysis in the right view: zebra stripes with their density and direction, mean
 // or Gaussian curvature colours with a legend.
 import * as THREE from 'three';
+import { api } from './api';
 import { $ } from './dom';
 import type { CurvatureMode } from './scene';
 import type { Studio } from './studio';
@@ -41,6 +42,23 @@ export function mountAnalysis(studio: Studio): void {
     $('legend-min').textContent = `≤ ${legendNumber(-range)}`;
     $('legend-max').textContent = `≥ ${legendNumber(range)}`;
   };
+  // The analytic curvature of a vertex-frame model's surface at the chosen resolution,
+  // fetched with each new surface while curvature is shown (a preview shows the estimate).
+  let asked = 0;
+  const fetchCurvature = async () => {
+    const mesh = studio.store.state.mesh;
+    if (curvature.value === 'off' || !mesh || !studio.store.state.model || studio.previewing()) return;
+    const ticket = ++asked;
+    try {
+      const { revision, values } = await api.curvature({ resolution: mesh.resolution, ...studio.solver });
+      // Still the newest request, and of the surface shown: else a later one follows.
+      if (ticket === asked && revision === mesh.revision) view.setAnalyticCurvature(mesh, revision, values);
+    } catch (e) {
+      studio.showError(e);
+    }
+  };
+  studio.store.subscribe(['mesh'], () => void fetchCurvature());
+  curvature.addEventListener('change', () => void fetchCurvature());
   curvature.addEventListener('change', () => {
     if (curvature.value !== 'off' && zebra.checked) {
       zebra.checked = false;

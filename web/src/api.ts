@@ -181,6 +181,22 @@ async function request<T>(method: 'GET' | 'POST', path: string, body?: unknown):
   return (await res.json()) as T;
 }
 
+/** The parameters of a mesh request (GET /api/mesh, an edit with its mesh). */
+function meshQuery(options: MeshOptions): URLSearchParams {
+  const query = solverQuery(options);
+  if (options.base) query.set('base', String(options.base));
+  if (options.resolution) query.set('resolution', String(options.resolution));
+  return query;
+}
+
+/** The solver parameters of a request that solves (mesh, boundaries). */
+function solverQuery(options: Pick<MeshOptions, 'solver' | 'seed'>): URLSearchParams {
+  const query = new URLSearchParams();
+  if (options.solver) query.set('solver', options.solver);
+  if (options.seed !== undefined) query.set('seed', String(options.seed));
+  return query;
+}
+
 export const api = {
   model: () => request<ModelState>('GET', '/api/model'),
   edit: (edit: Edit) => request<Status>('POST', '/api/edit', edit),
@@ -199,8 +215,13 @@ export const api = {
   discardRecovery: () => request<Status>('POST', '/api/discard-recovery'),
 
   /** The true boundary curves of every patch: float32 [patch][4 sides][samples][xyz]. */
-  async boundaries(samples: number): Promise<{ revision: number; samples: number; xyz: Float32Array }> {
-    const res = await send(`/api/boundaries?samples=${samples}`, 'GET');
+  async boundaries(
+    samples: number,
+    solver: Pick<MeshOptions, 'solver' | 'seed'> = {},
+  ): Promise<{ revision: number; samples: number; xyz: Float32Array }> {
+    const query = solverQuery(solver);
+    query.set('samples', String(samples));
+    const res = await send(`/api/boundaries?${query}`, 'GET');
     if (!res.ok) throw await failure(res);
     const buffer = await res.arrayBuffer();
     if (buffer.byteLength % (48 * samples) !== 0)
@@ -216,15 +237,31 @@ export const api = {
   },
 
   async mesh(options: MeshOptions = {}): Promise<MeshData | MeshDelta> {
-    const query = new URLSearchParams();
-    if (options.base) query.set('base', String(options.base));
-    if (options.resolution) query.set('resolution', String(options.resolution));
-    if (options.solver) query.set('solver', options.solver);
-    if (options.seed !== undefined) query.set('seed', String(options.seed));
-    const q = query.toString();
+    const q = meshQuery(options).toString();
     const res = await send(`/api/mesh${q ? `?${q}` : ''}`, 'GET');
     if (!res.ok) throw await failure(res);
     return parseMesh(await res.arrayBuffer(), res.headers);
+  },
+
+  /** The analytic mean and Gaussian curvature at every vertex of the mesh of `options`
+   * (vertex frames): [H0, K0, H1, K1, ...], and the revision they are of. */
+  async curvature(options: MeshOptions): Promise<{ revision: number; values: Float32Array }> {
+    const res = await send(`/api/curvature?${meshQuery(options)}`, 'GET');
+    if (!res.ok) throw await failure(res);
+    const buffer = await res.arrayBuffer();
+    if (buffer.byteLength % 8 !== 0) throw new ApiError(0, `curvature: ${buffer.byteLength} bytes, not pairs of float32`);
+    return { revision: Number(res.headers.get('X-Revision')), values: new Float32Array(buffer) };
+  },
+
+  /** An edit answered with the mesh after it (POST /api/edit?mesh=1): one round trip. */
+  async editWithMesh(edit: Edit, options: MeshOptions): Promise<{ value: Status; mesh: MeshData | MeshDelta }> {
+    const query = meshQuery(options);
+    query.set('mesh', '1');
+    const res = await send(`/api/edit?${query}`, 'POST', edit);
+    if (!res.ok) throw await failure(res);
+    const status = res.headers.get('X-Status');
+    if (!status) throw new ApiError(0, 'edit: the answer has no X-Status');
+    return { value: JSON.parse(status) as Status, mesh: parseMesh(await res.arrayBuffer(), res.headers) };
   },
 };
 

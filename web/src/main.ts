@@ -9,6 +9,7 @@ import { mountKeys } from './keys';
 import { mountModeller } from './modeller';
 import { mountPanel } from './panel';
 import { mountSceneSync } from './scene-sync';
+import { mountSolver } from './solver';
 import { mountStatusBar } from './statusbar';
 import { Studio } from './studio';
 import { mountToolbar } from './toolbar';
@@ -26,6 +27,7 @@ mountTransform(studio);
 const toolbar = mountToolbar(studio);
 mountAnalysis(studio);
 const modeller = mountModeller(studio, toolbar.mayLeave, toolbar.refreshFiles);
+mountSolver(studio);
 mountKeys(studio, mountViews(studio), modeller);
 
 function frame(): void {

@@ -4,9 +4,10 @@
 // (web/test/preview.test.ts).
 
 /** Triangles drawn per update during a gesture at most. Measured on this machine's
- * SwiftShader (docs/performance.md, "Studio: adaptive preview"): ~20k triangles keep a
- * drag update near 30 ms; 65k (the mug at Res 24) take ~160 ms. */
-export const PREVIEW_TRIANGLE_BUDGET = 20_000;
+ * SwiftShader at half pixel density with Lambert shading (docs/performance.md, "Studio:
+ * adaptive preview"): the mug's 20k triangles (Res 13) take ~26 ms a draw under load, its
+ * 8k (Res 9) ~10 ms; 65k (Res 24, full density, standard shading) ~110 ms. */
+export const PREVIEW_TRIANGLE_BUDGET = 10_000;
 /** The pixel density of the surface view during a preview, relative to the screen's: half
  * as many pixels each way, a quarter of the fill of a software renderer. */
 export const PREVIEW_PIXEL_SCALE = 0.5;

@@ -5,7 +5,8 @@ import { $ } from './dom';
 import type { Studio } from './studio';
 
 /** Models up to this many frames get their boundary curves with every surface during a
- * drag; larger ones when the gesture ends (a 1,000-frame model's curves are 0.8 MB). */
+ * drag that is not previewed; larger ones, and previewed ones, when the gesture ends (a
+ * 1,000-frame model's curves are 0.8 MB). */
 export const BOUNDARIES_LIVE_FRAMES = 200;
 /** Samples per side of a boundary curve at most. */
 const BOUNDARY_MAX_SAMPLES = 33;
@@ -45,11 +46,12 @@ export function mountSceneSync(studio: Studio): void {
   const fetchBoundaries = async () => {
     const s = store.state;
     if (!s.model || !overlayWanted(studio)) return;
-    if (studio.gesture && s.model.frames.length > BOUNDARIES_LIVE_FRAMES) return;
+    // During a preview the curves are hidden (SurfaceView.setPreview): fetched at its end.
+    if (studio.gesture && (studio.previewing() || s.model.frames.length > BOUNDARIES_LIVE_FRAMES)) return;
     const ticket = ++asked;
     try {
       // As many samples a side as the surface's (so the curves pass through its vertices).
-      const curves = await api.boundaries(Math.min(BOUNDARY_MAX_SAMPLES, studio.fullResolution()));
+      const curves = await api.boundaries(Math.min(BOUNDARY_MAX_SAMPLES, studio.fullResolution()), studio.solver);
       if (ticket < shown || !store.state.model) return; // a later answer is shown already
       shown = ticket;
       surfaceView.setBoundaries(curves, store.state.selectedFrames);

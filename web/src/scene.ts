@@ -5,6 +5,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { MeshData, Model, Vec3 } from './api';
 import { curvatureColors, symmetricRange, vertexCurvatures } from './curvature';
+import { PREVIEW_PIXEL_SCALE } from './preview';
 
 const FRAME_EDGES = 8;
 /** Above this many changed runs a delta uploads the whole buffer instead. */
@@ -717,7 +718,15 @@ export class SurfaceView extends Viewport {
   get zebraMaterial(): THREE.ShaderMaterial {
     return this.zebra;
   }
+  /** The shaded surface during a preview: Lambert lighting, a third cheaper per pixel than
+   * the standard material's on software WebGL (docs/performance.md, "Studio: adaptive preview"). */
+  private readonly previewShaded: THREE.Material;
   private zebraOn = false;
+  private overlayOn = true;
+  /** Whether a gesture's preview is shown (setPreview). */
+  private preview = false;
+  /** The boundary curves are of an older surface (a preview ended, new ones not yet here). */
+  private curvesStale = false;
   private curvature: CurvatureMode = 'off';
   /** The colour scale's half-range of the curvature shown (legend), 0 when off. */
   curvatureRange = 0;
@@ -745,6 +754,13 @@ export class SurfaceView extends Viewport {
       vertexColors: true,
       roughness: 0.6,
       metalness: 0,
+      side: THREE.DoubleSide,
+      polygonOffset: true,
+      polygonOffsetFactor: 1,
+      polygonOffsetUnits: 1,
+    });
+    this.previewShaded = new THREE.MeshLambertMaterial({
+      color: 0x98c1d9,
       side: THREE.DoubleSide,
       polygonOffset: true,
       polygonOffsetFactor: 1,
@@ -779,16 +795,57 @@ export class SurfaceView extends Viewport {
     return { x: s.x, y: s.y };
   }
 
-  setMesh(data: MeshData): void {
-    const g = new THREE.BufferGeometry();
-    g.setAttribute('position', new THREE.BufferAttribute(data.positions, 3));
-    g.setAttribute('normal', new THREE.BufferAttribute(data.normals, 3));
-    g.setIndex(new THREE.BufferAttribute(data.indices, 1));
-    g.computeBoundingSphere();
-    this.mesh.geometry.dispose();
-    this.mesh.geometry = g;
+  /** The geometry of every mesh the page holds (mesh-sync.ts): a mesh shown again keeps
+   * its WebGL buffers, so only the vertices a delta changed are uploaded. */
+  private readonly geometries = new Map<MeshData, THREE.BufferGeometry>();
+
+  /** The mesh shown (showMesh). */
+  private shown: MeshData | null = null;
+  /** The analytic curvature of a mesh (GET /api/curvature): H, K per vertex, of `revision`. */
+  private analytic: { mesh: MeshData; revision: number; values: Float32Array } | null = null;
+  /** Whether the colours shown come from the analytic curvature (else the mesh estimate). */
+  analyticCurvature = false;
+
+  /** The analytic curvature of `mesh` at `revision` (used while that mesh, unchanged, is
+   * shown; the estimate from the normals otherwise, as during a preview). */
+  setAnalyticCurvature(mesh: MeshData, revision: number, values: Float32Array): void {
+    this.analytic = { mesh, revision, values };
     this.colour();
     this.invalidate();
+  }
+
+  /** Shows `data`: a new mesh (uploaded whole), or one held before, whose vertex `runs`
+   * (start, count) a delta has rewritten in its arrays (only those are uploaded). */
+  showMesh(data: MeshData, runs?: Uint32Array): void {
+    this.shown = data;
+    let g = this.geometries.get(data);
+    if (!g) {
+      g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.BufferAttribute(data.positions, 3));
+      g.setAttribute('normal', new THREE.BufferAttribute(data.normals, 3));
+      g.setIndex(new THREE.BufferAttribute(data.indices, 1));
+      g.computeBoundingSphere();
+      this.geometries.set(data, g);
+    } else if (runs) {
+      for (const name of ['position', 'normal']) {
+        const attribute = g.getAttribute(name) as THREE.BufferAttribute;
+        // Many small uploads cost more than one big one.
+        if (runs.length <= 2 * MAX_UPLOAD_RANGES)
+          for (let r = 0; r < runs.length; r += 2) attribute.addUpdateRange(3 * runs[r], 3 * runs[r + 1]);
+        else attribute.clearUpdateRanges();
+        attribute.needsUpdate = true;
+      }
+    }
+    this.mesh.geometry = g;
+    this.colour(); // all of it: the colour scale may change with the new shape
+    this.invalidate();
+  }
+
+  /** Frees the WebGL buffers of a mesh the page no longer holds. */
+  dropMesh(data: MeshData): void {
+    if (this.analytic?.mesh === data) this.analytic = null;
+    this.geometries.get(data)?.dispose();
+    this.geometries.delete(data);
   }
 
   setZebra(on: boolean): void {
@@ -810,8 +867,21 @@ export class SurfaceView extends Viewport {
     this.pickMaterial();
   }
 
+  /** A gesture's preview (on) or the chosen resolution again (off): during a preview the
+   * view draws at PREVIEW_PIXEL_SCALE of the pixel density, shades with Lambert lighting and
+   * hides the boundary curves (which follow the surface again when the gesture ends). */
+  setPreview(on: boolean): void {
+    if (this.preview === on) return;
+    this.preview = on;
+    this.setPixelScale(on ? PREVIEW_PIXEL_SCALE : 1);
+    if (on) this.curvesStale = true;
+    this.showOverlay();
+    this.pickMaterial();
+  }
+
   private pickMaterial(): void {
-    this.mesh.material = this.zebraOn ? this.zebra : this.curvature !== 'off' ? this.coloured : this.shaded;
+    const shaded = this.preview ? this.previewShaded : this.shaded;
+    this.mesh.material = this.zebraOn ? this.zebra : this.curvature !== 'off' ? this.coloured : shaded;
     this.invalidate();
   }
 
@@ -824,9 +894,19 @@ export class SurfaceView extends Viewport {
       this.onCurvature(this.curvature, 0);
       return;
     }
-    const normal = g.getAttribute('normal') as THREE.BufferAttribute;
-    const k = vertexCurvatures(position.array, normal.array, g.index.array);
-    const values = this.curvature === 'mean' ? k.mean : k.gaussian;
+    const a = this.analytic;
+    this.analyticCurvature =
+      !!a && a.mesh === this.shown && a.revision === a.mesh.revision && a.values.length === 2 * position.count;
+    let values: Float32Array;
+    if (this.analyticCurvature) {
+      values = new Float32Array(position.count);
+      const offset = this.curvature === 'mean' ? 0 : 1;
+      for (let i = 0; i < values.length; ++i) values[i] = a!.values[2 * i + offset];
+    } else {
+      const normal = g.getAttribute('normal') as THREE.BufferAttribute;
+      const k = vertexCurvatures(position.array, normal.array, g.index.array);
+      values = this.curvature === 'mean' ? k.mean : k.gaussian;
+    }
     this.curvatureRange = symmetricRange(values);
     let color = g.getAttribute('color') as THREE.BufferAttribute | undefined;
     if (!color || color.count !== position.count) {
@@ -838,24 +918,13 @@ export class SurfaceView extends Viewport {
     this.onCurvature(this.curvature, this.curvatureRange);
   }
 
-  setOverlay(on: boolean): void {
-    this.overlay.object.visible = on;
-    this.invalidate();
+  private showOverlay(): void {
+    this.overlay.object.visible = this.overlayOn && !this.preview && !this.curvesStale;
   }
 
-  /** New positions and normals of the vertex runs (start, count) of the mesh last given to
-   * setMesh, already written into its arrays (a delta from the server). */
-  updateVertices(runs: Uint32Array): void {
-    const g = this.mesh.geometry;
-    for (const name of ['position', 'normal']) {
-      const attribute = g.getAttribute(name) as THREE.BufferAttribute;
-      // Many small uploads cost more than one big one.
-      if (runs.length <= 2 * MAX_UPLOAD_RANGES)
-        for (let r = 0; r < runs.length; r += 2) attribute.addUpdateRange(3 * runs[r], 3 * runs[r + 1]);
-      else attribute.clearUpdateRanges();
-      attribute.needsUpdate = true;
-    }
-    this.colour(); // all of it: the colour scale may change with the new shape
+  setOverlay(on: boolean): void {
+    this.overlayOn = on;
+    this.showOverlay();
     this.invalidate();
   }
 
@@ -863,6 +932,8 @@ export class SurfaceView extends Viewport {
   setBoundaries(curves: { xyz: Float32Array; samples: number } | null, selectedFrames: ReadonlySet<number>): void {
     if (curves) this.overlay.set(curves.xyz, curves.samples, selectedFrames);
     else this.overlay.clear();
+    this.curvesStale = false;
+    this.showOverlay();
     this.invalidate();
   }
 

@@ -3,13 +3,14 @@
 // model, report an error, run a toolbar action). Panels, toolbar and tools get it and
 // subscribe to the store; none holds page state of its own.
 import { api, ApiError } from './api';
-import type { ModelState } from './api';
+import type { MeshOptions, ModelState } from './api';
 import { $ } from './dom';
 import { MeshSync } from './mesh-sync';
 import { EditPump } from './pump';
-import { PREVIEW_PIXEL_SCALE, previewResolution } from './preview';
+import { previewResolution } from './preview';
 import { FrameView, SurfaceView, modelBox, pointsBox } from './scene';
 import { Store } from './store';
+import type { MeshData } from './wire';
 
 /** Whether gestures show a coarser preview (off with ?preview=0, for comparisons). */
 const PREVIEW = new URLSearchParams(location.search).get('preview') !== '0';
@@ -20,19 +21,25 @@ export class Studio {
   readonly surfaceView = new SurfaceView($('surface-view'));
   readonly pump: EditPump;
   readonly meshes: MeshSync;
+  /** The solver of every mesh request (solver.ts): the global one unless set. */
+  solver: Pick<MeshOptions, 'solver' | 'seed'> = {};
   /** Whether a drag or slider gesture is in progress (the surface may show a preview). */
   gesture = false;
 
   constructor() {
     this.pump = new EditPump({
-      edit: (edit) => api.edit(edit),
+      // With Live on, an edit brings the mesh after it (one round trip), unless a mesh
+      // request is in flight (then the mesh follows the answer).
+      edit: async (edit) =>
+        (this.live() ? await this.meshes.along((options) => api.editWithMesh(edit, { ...options, ...this.solver })) : null) ??
+        api.edit(edit),
       endGroup: () => api.endGroup(),
       answered: (status, edited) => {
         this.store.update(['status'], (s) => {
           s.status = status;
           if (edited) s.error = '';
         });
-        if (edited) this.modelChanged();
+        if (edited && !this.showing(status.revision)) this.modelChanged();
       },
       refused: async (e) => {
         this.showError(e);
@@ -40,25 +47,43 @@ export class Studio {
       },
     });
     this.meshes = new MeshSync({
-      mesh: (options) => api.mesh(options),
+      mesh: (options) => api.mesh({ ...options, ...this.solver }),
       resolution: () => this.resolution(),
-      current: () => this.store.state.mesh,
-      replaced: (mesh) => {
-        this.surfaceView.setMesh(mesh);
+      replaced: (mesh, dropped) => {
+        if (dropped) this.surfaceView.dropMesh(dropped);
+        this.show(mesh);
         this.store.update(['mesh'], (s) => {
           s.mesh = mesh;
           s.meshStale = false;
         });
       },
-      updated: (_mesh, delta) => {
-        this.surfaceView.updateVertices(delta.runs);
+      updated: (mesh, delta) => {
+        this.show(mesh, delta.runs);
         this.store.update(['mesh'], (s) => {
+          s.mesh = mesh;
           ++s.meshDeltas;
           s.meshStale = false;
         });
       },
-      failed: (e) => this.showError(e),
+      failed: (e) => {
+        if (!this.gesture) this.surfaceView.setPreview(false);
+        this.showError(e);
+      },
     });
+  }
+
+  /** Shows a mesh; the chosen resolution outside a gesture is drawn at full pixel density
+   * again (kept at the preview's until then: no frame of the preview at full density). */
+  private show(mesh: MeshData, runs?: Uint32Array): void {
+    if (!this.gesture && mesh.resolution === this.fullResolution()) this.surfaceView.setPreview(false);
+    this.surfaceView.showMesh(mesh, runs);
+  }
+
+  /** Whether the surface shown is that of `revision` at the resolution wanted now (an edit
+   * that brought its mesh needs no other). */
+  private showing(revision: number): boolean {
+    const mesh = this.store.state.mesh;
+    return !!mesh && mesh.revision === revision % 2 ** 32 && mesh.resolution === this.resolution();
   }
 
   /** The resolution chosen in the surface view's bar. */
@@ -70,19 +95,37 @@ export class Studio {
    * (preview.ts; ?preview=0 turns it off). */
   resolution(): number {
     const full = this.fullResolution();
-    const mesh = this.store.state.mesh;
-    if (!this.gesture || !PREVIEW || !mesh || mesh.resolution < 2) return full;
-    // The full mesh's triangles, from the mesh shown (triangles grow as (resolution - 1)²).
+    return this.gesture && PREVIEW && this.preview ? Math.min(this.preview, full) : full;
+  }
+
+  /** The preview's resolution of the gesture in progress, chosen once when it begins (a
+   * resolution that changed within a gesture would cost whole meshes and the full
+   * resolution's delta base); 0 before the first mesh. */
+  private preview = 0;
+
+  /** The resolution a gesture previews at, from the triangles of the full-resolution mesh
+   * held, else of the mesh shown (they grow as (resolution − 1)²). */
+  private previewFor(): number {
+    const full = this.fullResolution();
+    const mesh = this.meshes.heldAt(full) ?? this.store.state.mesh;
+    if (!mesh || mesh.resolution < 2) return 0;
     const fullTriangles = mesh.triangleCount * ((full - 1) / (mesh.resolution - 1)) ** 2;
     return previewResolution(full, fullTriangles);
+  }
+
+  /** Whether the surface is fetched coarser than the chosen resolution now (a gesture's
+   * preview of a large model). */
+  previewing(): boolean {
+    return this.resolution() !== this.fullResolution();
   }
 
   /** Starts a drag or slider gesture: its edits are one undo group. A large surface is
    * previewed coarser (resolution(): the next mesh) and at a lower pixel density. */
   beginGesture(kind: string): void {
     this.gesture = true;
+    this.preview = this.previewFor();
     this.pump.begin(kind);
-    if (this.resolution() !== this.fullResolution()) this.surfaceView.setPixelScale(PREVIEW_PIXEL_SCALE);
+    if (this.previewing()) this.surfaceView.setPreview(true);
   }
 
   /** Ends the gesture; resolves when its edits are answered. A preview gives way to the
@@ -90,9 +133,9 @@ export class Studio {
    * surface sync fetches again after them). */
   async endGesture(): Promise<void> {
     this.gesture = false;
-    this.surfaceView.setPixelScale(1);
     const mesh = this.store.state.mesh;
-    if (mesh && mesh.resolution !== this.fullResolution()) this.modelChanged();
+    if (mesh && mesh.resolution !== this.fullResolution() && this.live()) this.modelChanged();
+    else this.surfaceView.setPreview(false);
     await this.pump.end();
   }
 

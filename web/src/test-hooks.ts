@@ -19,11 +19,13 @@ export function installTestHooks(studio: Studio): void {
     frameScreen: (f: number) => frameView.frameScreen(f),
     edit: (edit: Edit) => pump.once('test', () => edit).then(() => store.state.error),
     idle: () => pump.idle(),
+    /** Resolves when no mesh request is in flight (after a solver change, say). */
+    meshIdle: () => studio.meshes.idle(),
     /** Whether the page's mesh (updated by deltas) equals the whole mesh the server makes now. */
     meshMatchesServer: async () => {
       const m = store.state.mesh;
       if (!m) return false;
-      const full = await api.mesh({ resolution: m.resolution });
+      const full = await api.mesh({ resolution: m.resolution, ...studio.solver });
       if (full.kind !== 'full' || full.revision !== m.revision) return false;
       const same = (a: ArrayLike<number>, b: ArrayLike<number>) =>
         a.length === b.length && Array.prototype.every.call(a, (x: number, i: number) => x === b[i]);
@@ -56,6 +58,7 @@ export function installTestHooks(studio: Studio): void {
       stripes: surfaceView.zebraMaterial.uniforms.stripes.value as number,
       axis: (surfaceView.zebraMaterial.uniforms.axis.value as { toArray(): number[] }).toArray(),
       curvatureRange: surfaceView.curvatureRange,
+      analyticCurvature: surfaceView.analyticCurvature,
     }),
     /** The surface overlay's line vertices (the boundary curves), flat xyz. */
     overlayPoints: () => {

@@ -8,7 +8,10 @@ const triangles = (patches: number, r: number) => patches * 2 * (r - 1) ** 2;
 
 describe('previewResolution', () => {
   it('keeps the full resolution when its mesh fits the budget, or before any mesh', () => {
-    expect(previewResolution(24, triangles(10, 24))).toBe(24);
+    const fitting = Math.floor(PREVIEW_TRIANGLE_BUDGET / triangles(1, 24)); // patches whose Res 24 mesh fits
+    expect(triangles(fitting, 24)).toBeLessThanOrEqual(PREVIEW_TRIANGLE_BUDGET);
+    expect(previewResolution(24, triangles(fitting, 24))).toBe(24);
+    expect(previewResolution(24, triangles(fitting + 1, 24))).toBeLessThan(24);
     expect(previewResolution(24, null)).toBe(24);
   });
 
