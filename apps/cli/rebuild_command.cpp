@@ -103,9 +103,16 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
                   "mean squared distances")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
-  cmd->add_option("--fit-samples", samples, "vertex-frames: surface samples per patch side")
-      ->check(CLI::Range(3u, 65u))
+  cmd->add_option("--fit-samples", samples,
+                  "vertex-frames: surface samples per patch side (3 to 65; 0: about as many "
+                  "surface samples as mesh vertices, 4 to 9 a side)")
+      ->check(CLI::Range(0u, 65u) & !CLI::Range(1u, 2u))
       ->capture_default_str();
+  cmd->add_flag("--fit-shape", fitShape,
+                "vertex-frames: fit each frame's a1, a2 and a sculpting force f0 too");
+  cmd->add_flag("--allow-folds", allowFolds,
+                "vertex-frames: take steps that fold more of the surface over (refused by "
+                "default)");
 }
 
 CLI::App* RebuildCommand::add(CLI::App& app) {
@@ -331,6 +338,8 @@ int RebuildCommand::runVertexFrames() const {
   options.tolerance = args.tolerance;
   options.smoothness = args.smoothness;
   options.samplesPerSide = args.samples;
+  options.fitShape = args.fitShape;
+  options.preventFolds = !args.allowFolds;
   ProgressBar bar(args.iterations, !quiet);
   options.onIteration = [&](const FitIteration& it) {
     bar.update(it.iteration, it.measure.rms());
@@ -338,10 +347,11 @@ int RebuildCommand::runVertexFrames() const {
     const FitMeasure& m = it.measure;
     fmt::print(
         "iteration {:>3}{}: RMS {}  surface -> mesh RMS {} mean {} max {}  mesh -> surface RMS "
-        "{} mean {} max {}\n",
+        "{} mean {} max {}  folded {}/{}\n",
         it.iteration, it.iteration == 0 ? " (layout)" : fmt::format(" (step {:g})", it.step),
         percent(m.rms()), percent(m.rmsToMesh), percent(m.meanToMesh), percent(m.maxToMesh),
-        percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel));
+        percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel), m.foldedSamples,
+        m.samples);
   };
   t0 = Clock::now();
   FitResult fitted;

@@ -61,6 +61,10 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
 struct FitMeasure {
   double rmsToMesh = 0.0, meanToMesh = 0.0, maxToMesh = 0.0;     ///< surface samples -> mesh
   double rmsToModel = 0.0, meanToModel = 0.0, maxToModel = 0.0;  ///< mesh vertices -> surface
+  /// Surface samples whose patch normal disagrees (cos < 0) with the mesh's normal at their
+  /// closest point, against the orientation most of the samples agree on: folds.
+  std::uint32_t foldedSamples = 0;
+  std::uint32_t samples = 0;  ///< surface samples in all
   /// sqrt((rmsToMesh² + rmsToModel²) / 2): the quantity each step may not increase.
   double rms() const;
 };
@@ -75,8 +79,9 @@ struct FitOptions {
   std::uint32_t maxIterations = 30;
   /// Stops when an iteration lowers the RMS by less than this fraction of it.
   double tolerance = 1e-3;
-  /// Surface samples per patch side (≥ 3), a grid including the patch's borders.
-  std::uint32_t samplesPerSide = 9;
+  /// Surface samples per patch side (≥ 3), a grid including the patch's borders; 0 chooses
+  /// as many as make the surface samples about as many as the mesh's vertices, from 4 to 9.
+  std::uint32_t samplesPerSide = 0;
   /// Weight of the smoothness term: the mean squared umbrella Laplacian of the vertex
   /// positions over the frame graph (each vertex against the mean of the vertices next to
   /// it along frame sides), against the mean squared distances (docs/rebuild.md).
@@ -89,6 +94,14 @@ struct FitOptions {
   double tangentialWeight = 0.1;
   /// Halvings of a step the line search tries before it gives up.
   std::uint32_t maxHalvings = 8;
+  /// Refuses steps that fold more surface samples over (FitMeasure::foldedSamples) than the
+  /// current surface has; where a step would, the smoothness of the frames that fold is
+  /// raised tenfold and the step solved again (docs/rebuild.md).
+  bool preventFolds = false;
+  /// After each vertex step, also fits each frame's a1, a2 and a sculpting force f0 over the
+  /// whole frame (f0 is linear and solved with the vertices; a1, a2 by a damped
+  /// Gauss–Newton step on their logarithms), the RMS never increasing.
+  bool fitShape = false;
   /// Called with the start and after every accepted iteration (progress reports).
   std::function<void(const FitIteration&)> onIteration;
 };
