@@ -21,9 +21,9 @@ namespace {
 using namespace pdesurf;
 
 /// A mesh of CGAL's sample data, extracted by scripts/cgal_data into build/cgal-data (this
-/// file's repository); throws with the script's message when libcgal-demo is missing.
+/// repository's); throws with the script's message when libcgal-demo is missing.
 Mesh cgalMesh(const std::string& name) {
-  const std::filesystem::path root = std::filesystem::path(__FILE__).parent_path().parent_path();
+  const std::filesystem::path root = PDESURF_SOURCE_DIR;
   const std::string command = "'" + (root / "scripts/cgal_data").string() + "' " + name;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) throw std::runtime_error("cannot run " + command);

@@ -108,8 +108,6 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
                   "surface samples as mesh vertices, 4 to 9 a side)")
       ->check(CLI::Range(0u, 65u) & !CLI::Range(1u, 2u))
       ->capture_default_str();
-  cmd->add_flag("--fit-shape", fitShape,
-                "vertex-frames: fit each frame's a1, a2 and a sculpting force f0 too");
   cmd->add_flag("--allow-folds", allowFolds,
                 "vertex-frames: take steps that fold more of the surface over (refused by "
                 "default)");
@@ -338,7 +336,6 @@ int RebuildCommand::runVertexFrames() const {
   options.tolerance = args.tolerance;
   options.smoothness = args.smoothness;
   options.samplesPerSide = args.samples;
-  options.fitShape = args.fitShape;
   options.preventFolds = !args.allowFolds;
   ProgressBar bar(args.iterations, !quiet);
   options.onIteration = [&](const FitIteration& it) {

@@ -19,7 +19,6 @@ struct VertexFrameRebuildArgs {
   double tolerance = 1e-3;
   double smoothness = 1e-5;
   std::uint32_t samples = 0;  ///< surface samples per patch side (0: automatic)
-  bool fitShape = false;      ///< fit a1, a2 and a force per frame too
   bool allowFolds = false;    ///< take steps that fold the surface over
 
   void add(CLI::App* cmd);

@@ -95,13 +95,10 @@ struct FitOptions {
   /// Halvings of a step the line search tries before it gives up.
   std::uint32_t maxHalvings = 8;
   /// Refuses steps that fold more surface samples over (FitMeasure::foldedSamples) than the
-  /// current surface has; where a step would, the smoothness of the frames that fold is
-  /// raised tenfold and the step solved again (docs/rebuild.md).
-  bool preventFolds = false;
-  /// After each vertex step, also fits each frame's a1, a2 and a sculpting force f0 over the
-  /// whole frame (f0 is linear and solved with the vertices; a1, a2 by a damped
-  /// Gauss–Newton step on their logarithms), the RMS never increasing.
-  bool fitShape = false;
+  /// current surface has: where a step would, the vertices of the frames that fold more stay
+  /// and the rest of the step is tried again; and pairs whose normals disagree are left out
+  /// of the least squares (docs/rebuild.md).
+  bool preventFolds = true;
   /// Called with the start and after every accepted iteration (progress reports).
   std::function<void(const FitIteration&)> onIteration;
 };

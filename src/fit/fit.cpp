@@ -7,6 +7,8 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -74,11 +76,13 @@ struct Target {
   Tree tree;
   std::vector<Vec3> samples;    ///< the vertices that triangles with area use
   std::vector<double> weights;  ///< a third of the area of their triangles, summing to 1
+  std::vector<Vec3> sampleNormals;  ///< unit, the area-weighted mean of their triangles' normals
   double diagonal = 0.0;
 
   explicit Target(const Mesh& mesh) {
     auto vertex = [&](std::uint32_t v) { return detail::meshVertex(mesh, v); };
     std::vector<double> area(mesh.vertexCount(), 0.0);
+    std::vector<Vec3> normalSums(mesh.vertexCount(), Vec3::Zero());
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     double total = 0.0;
     // Edges of one triangle with area are the boundary.
@@ -103,6 +107,7 @@ struct Target {
       normals.push_back((b - a).cross(c - a).normalized());
       for (int k = 0; k < 3; ++k) {
         area[i[k]] += at / 3.0;
+        normalSums[i[k]] += (b - a).cross(c - a);
         lo = lo.cwiseMin(vertex(i[k]));
         hi = hi.cwiseMax(vertex(i[k]));
       }
@@ -114,6 +119,7 @@ struct Target {
     for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v)
       if (area[v] > 0.0) {
         samples.push_back(vertex(v));
+        sampleNormals.push_back(normalSums[v].normalized());
         weights.push_back(area[v] / total);
       }
     diagonal = (hi - lo).norm();
@@ -156,14 +162,9 @@ constexpr double kCgTolerance = 1e-13;
 /// only: a few dozen steps in practice); then the best iterate is used.
 constexpr int kMaxCgSteps = 400;
 
-/// Where a step would fold samples over, the smoothness of the folding frames' vertices
-/// rises by this factor and the step is solved again, at most kMaxFoldRetries times an
-/// iteration; a vertex's smoothness never rises above kMaxStiffness times the base.
-constexpr double kFoldStiffening = 10.0;
-constexpr int kMaxFoldRetries = 6;
-constexpr double kMaxStiffness = 1e6;
-/// The smoothness a folding vertex starts from when the fit has none (FitOptions::smoothness 0).
-constexpr double kFoldSmoothness = 1e-5;
+/// Where a step would fold more samples of some frames over, those frames' vertices stay
+/// and the rest of the step is tried again, at most this many times a step.
+constexpr int kMaxFoldRetries = 4;
 
 std::uint32_t automaticSamples(std::size_t meshSamples, std::size_t frames) {
   const double perFrame = static_cast<double>(meshSamples) / static_cast<double>(frames);
@@ -188,7 +189,6 @@ class Fitter {
             {static_cast<double>(i) / (g - 1), static_cast<double>(j) / (g - 1), wu * wv});
       }
     buildLaplacian();
-    stiffness_.assign(model_.vertices.size(), 1.0);
     tangentialWeight_ = options.tangentialWeight;
     rebuildLinear();
   }
@@ -208,41 +208,27 @@ class Fitter {
         break;
       }
       // Line search: the whole step, else halves of it, until the RMS does not increase (and
-      // no more samples fold over); a step that would fold stiffens the folding frames and
-      // is solved again; when no fraction lowers the RMS, the tangential weight rises
-      // (towards plain distances) and the least squares is solved again.
+      // no more samples fold over: tryStep holds back the frames that would fold); when no
+      // fraction lowers the RMS, the tangential weight rises (towards plain distances) and
+      // the least squares is solved again.
       double step = 1.0;
       bool accepted = false;
-      int foldRetries = 0;
       for (;;) {
         const Eigen::VectorXd y0 = state();
         const Eigen::VectorXd solution = leastSquares(current.pairs, y0);
-        bool stiffened = false;
-        for (std::uint32_t h = 0; h <= options_.maxHalvings; ++h) {
+        for (std::uint32_t h = 0; h <= options_.maxHalvings && !accepted; ++h) {
           step = std::ldexp(1.0, -static_cast<int>(h));
-          VertexFrameModel candidate = modelAt(y0 + step * (solution - y0));
-          Evaluation next = evaluate(candidate);
-          if (std::getenv("FITDBG"))
-            fmt::print(stderr, "  try h={} rms {:.4g} -> {:.4g} folds {} -> {} retries {}\n", h,
-                       rms, next.measure.rms(), current.measure.foldedSamples,
-                       next.measure.foldedSamples, foldRetries);
+          auto tried = tryStep(y0, y0 + step * (solution - y0), current);
+          if (!tried) continue;
+          auto& [candidate, next] = *tried;
           if (next.measure.rms() > rms) continue;
-          if (options_.preventFolds && next.measure.foldedSamples > current.measure.foldedSamples) {
-            if (foldRetries < kMaxFoldRetries && stiffen(next, current)) {
-              ++foldRetries;
-              stiffened = true;
-              break;
-            }
+          if (options_.preventFolds && next.measure.foldedSamples > current.measure.foldedSamples)
             continue;
-          }
           model_ = std::move(candidate);
           current = std::move(next);
           accepted = true;
-          break;
         }
-        if (accepted) break;
-        if (stiffened) continue;
-        if (tangentialWeight_ >= 1.0) break;
+        if (accepted || tangentialWeight_ >= 1.0) break;
         tangentialWeight_ = std::min(1.0, 10.0 * tangentialWeight_);
       }
       if (!accepted) {
@@ -253,7 +239,6 @@ class Fitter {
       }
       tangentialWeight_ = step == 1.0 ? std::max(kMinTangentialWeight, 0.1 * tangentialWeight_)
                                       : std::min(1.0, 10.0 * tangentialWeight_);
-      if (options_.fitShape) shapeStep(current);
       report(result, {it, current.measure, step});
       const double decrease = (rms - current.measure.rms()) / rms;
       if (decrease < options_.tolerance) {
@@ -315,22 +300,34 @@ class Fitter {
     return m;
   }
 
-  /// Raises the smoothness of the vertices of every frame that folds more samples in `next`
-  /// than in `current`; false when none could rise any more.
-  bool stiffen(const Evaluation& next, const Evaluation& current) {
-    bool raised = false;
-    for (std::size_t k = 0; k < model_.frames.size(); ++k) {
-      if (next.foldsPerFrame[k] <= current.foldsPerFrame[k]) continue;
-      for (std::uint32_t v : model_.frames[k].vertices)
-        if (stiffness_[v] < kMaxStiffness) {
-          stiffness_[v] = std::min(kMaxStiffness, kFoldStiffening * stiffness_[v]);
-          raised = true;
-        }
+  /// The model at unknowns y (a step from y0) and its evaluation. When the step folds more
+  /// samples of some frames over than `current` has there, those frames' vertices stay at
+  /// y0 and the rest of the step is tried again (at most kMaxFoldRetries times).
+  /// Nothing when every vertex the step moves had to stay.
+  std::optional<std::pair<VertexFrameModel, Evaluation>> tryStep(const Eigen::VectorXd& y0,
+                                                                 Eigen::VectorXd y,
+                                                                 const Evaluation& current) const {
+    std::vector<char> kept(model_.vertices.size(), 0);
+    for (int retry = 0;; ++retry) {
+      VertexFrameModel candidate = modelAt(y);
+      Evaluation next = evaluate(candidate);
+      if (!options_.preventFolds || retry == kMaxFoldRetries ||
+          next.measure.foldedSamples <= current.measure.foldedSamples)
+        return std::pair{std::move(candidate), std::move(next)};
+      bool changed = false;
+      for (std::size_t k = 0; k < model_.frames.size(); ++k) {
+        if (next.foldsPerFrame[k] <= current.foldsPerFrame[k]) continue;
+        for (std::uint32_t v : model_.frames[k].vertices)
+          if (!kept[v]) {
+            kept[v] = 1;
+            y.segment<3>(3 * Eigen::Index{v}) = y0.segment<3>(3 * Eigen::Index{v});
+            changed = true;
+          }
+      }
+      if (!changed) return std::pair{std::move(candidate), std::move(next)};
+      if (y == y0) return std::nullopt;  // every moving vertex held back: no step left
     }
-    return raised;
   }
-
-  void shapeStep(Evaluation&) {}
 
   /// The umbrella Laplacian over the frame graph: vertex j against the mean of the
   /// vertices next to it along frame sides (P1-P2, P2-P3, ..., P8-P1).
@@ -425,6 +422,12 @@ class Fitter {
       max = std::max(max, distances[i]);
       if (orientation * cosine[i] < 0.0) ++e.foldsPerFrame[e.pairs[i].frame];
     }
+    // A sample whose normal disagrees with the mesh's at its closest point (folded, or
+    // paired across a thin part) would pull the surface through the mesh: it is measured,
+    // but the least squares leaves it to its neighbours and the smoothness.
+    if (options_.preventFolds)
+      for (std::size_t i = 0; i < count; ++i)
+        if (orientation * cosine[i] < 0.0) e.pairs[i].weight = 0.0;
     e.measure.samples = static_cast<std::uint32_t>(count);
     for (std::uint32_t f : e.foldsPerFrame) e.measure.foldedSamples += f;
     e.measure.rmsToMesh = std::sqrt(sumSquares) / diag;
@@ -503,12 +506,16 @@ class Fitter {
         const std::array<bool, 4> atSide = {bv == 0.0, bu == 1.0, bv == 1.0, bu == 0.0};
         for (int side = 0; side < 4; ++side)
           if (atSide[side] && topo.edges[topo.edgeOf[k][side]].sideCount == 1) onBoundary = true;
+        // Likewise a mesh vertex whose normal disagrees with the surface's at its foot.
+        const double flip = surface.topology->flipped[k] ? -1.0 : 1.0;
+        const bool against = options_.preventFolds && length > 0.0 &&
+                             orientation * flip * normal.dot(target_.sampleNormals[m]) < 0.0;
         e.pairs[count + m] = {k,
                               bu,
                               bv,
                               x,
                               length > 0.0 && !onBoundary ? Vec3(normal / length) : Vec3::Zero(),
-                              target_.weights[m],
+                              against ? 0.0 : target_.weights[m],
                               -1};
       }
     });
@@ -584,17 +591,10 @@ class Fitter {
           triplets.emplace_back(3 * j + c, 3 * j + c, 1.0);
           rhs[3 * j + c] = y0[3 * j + c];
         }
-    // Smoothness: (λ / n) Σ_j s_j |Lap x|_j², the Laplacian acting on each component alike,
-    // s_j the vertex's stiffness (1, raised where steps would fold).
-    Eigen::VectorXd weight(n);
-    for (Eigen::Index j = 0; j < n; ++j)
-      weight[j] = stiffness_[j] == 1.0
-                      ? options_.smoothness
-                      : std::max(options_.smoothness, kFoldSmoothness) * stiffness_[j];
-    if (weight.maxCoeff() > 0.0) {
-      const Eigen::SparseMatrix<double> lap2 =
-          laplacian_.transpose() * weight.asDiagonal() * laplacian_;
-      const double scale = 1.0 / static_cast<double>(n);
+    // Smoothness: (λ / n) Σ_j |Lap x|², the Laplacian acting on each component alike.
+    if (options_.smoothness > 0.0) {
+      const Eigen::SparseMatrix<double> lap2 = laplacian_.transpose() * laplacian_;
+      const double scale = options_.smoothness / static_cast<double>(n);
       for (Eigen::Index col = 0; col < lap2.outerSize(); ++col)
         for (Eigen::SparseMatrix<double>::InnerIterator it(lap2, col); it; ++it)
           for (int c = 0; c < 3; ++c)
@@ -655,7 +655,6 @@ class Fitter {
   Eigen::SparseMatrix<double, Eigen::RowMajor> strips_;
   double tangentialWeight_ = 1.0;
   Eigen::SparseMatrix<double> laplacian_;
-  std::vector<double> stiffness_;  ///< per vertex: its smoothness over the base
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
   bool analysed_ = false;
   Eigen::Index analysedNonZeros_ = 0;
