@@ -108,9 +108,9 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
                   "surface samples as mesh vertices, 4 to 9 a side)")
       ->check(CLI::Range(0u, 65u) & !CLI::Range(1u, 2u))
       ->capture_default_str();
-  cmd->add_flag("--allow-folds", allowFolds,
-                "vertex-frames: take steps that fold more of the surface over (refused by "
-                "default)");
+  cmd->add_flag("--prevent-folds", preventFolds,
+                "vertex-frames: refuse steps that fold more of the surface over (fewer folds, "
+                "a higher RMS)");
 }
 
 CLI::App* RebuildCommand::add(CLI::App& app) {
@@ -336,7 +336,7 @@ int RebuildCommand::runVertexFrames() const {
   options.tolerance = args.tolerance;
   options.smoothness = args.smoothness;
   options.samplesPerSide = args.samples;
-  options.preventFolds = !args.allowFolds;
+  options.preventFolds = args.preventFolds;
   ProgressBar bar(args.iterations, !quiet);
   options.onIteration = [&](const FitIteration& it) {
     bar.update(it.iteration, it.measure.rms());

@@ -19,7 +19,7 @@ struct VertexFrameRebuildArgs {
   double tolerance = 1e-3;
   double smoothness = 1e-5;
   std::uint32_t samples = 0;  ///< surface samples per patch side (0: automatic)
-  bool allowFolds = false;    ///< take steps that fold the surface over
+  bool preventFolds = false;  ///< refuse steps that fold more of the surface over
 
   void add(CLI::App* cmd);
 };

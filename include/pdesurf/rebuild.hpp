@@ -95,10 +95,10 @@ struct FitOptions {
   /// Halvings of a step the line search tries before it gives up.
   std::uint32_t maxHalvings = 8;
   /// Refuses steps that fold more surface samples over (FitMeasure::foldedSamples) than the
-  /// current surface has: where a step would, the vertices of the frames that fold more stay
-  /// and the rest of the step is tried again; and pairs whose normals disagree are left out
-  /// of the least squares (docs/rebuild.md).
-  bool preventFolds = true;
+  /// current surface has (or 0.5 % of the samples, if more): where a step would, the
+  /// vertices of the frames that fold more stay and the rest of the step is tried again.
+  /// Off by default: it costs RMS (docs/rebuild.md, Limits).
+  bool preventFolds = false;
   /// Called with the start and after every accepted iteration (progress reports).
   std::function<void(const FitIteration&)> onIteration;
 };
