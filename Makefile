@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup configure build web test run examples bench format clean
+.PHONY: all setup configure build web test run examples bench accuracy format clean
 
 all: build
 
@@ -58,6 +58,11 @@ examples: build
 
 bench: build
 	scripts/run_bench $(BUILD)
+
+# The accuracy-versus-storage benchmark: writes docs/accuracy-storage.md and its images.
+accuracy: build
+	scripts/setup accuracy
+	PDESURF_BUILD=$(BUILD) scripts/accuracy --jobs 2
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

@@ -64,6 +64,12 @@ void BM_SolveKnownTopology(benchmark::State& state) {
 }
 BENCHMARK(BM_SolveKnownTopology)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 
+/// The tessellation rows' resolutions N (263k, 1.05 M and 4.2 M vertices), timed by the wall
+/// clock (the tessellation runs on several threads).
+void meshSizes(benchmark::internal::Benchmark* b) {
+  b->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
 /// The 1,024-frame sheet the tessellation rows use, solved.
 const VertexFrameSurface& tessellationSheet() {
   static const VertexFrameSurface s = solve(sheet(32));
@@ -71,13 +77,23 @@ const VertexFrameSurface& tessellationSheet() {
 }
 
 /// Tessellation with normals; items = vertices. Fresh: a new Mesh per iteration, allocated,
-/// written and freed, as `pdesurf build` pays it; otherwise into a mesh whose buffers are
-/// reused (the arithmetic and the stores alone).
+/// written and freed, as `pdesurf build` pays it (its large blocks come from the cache of
+/// freed blocks, include/pdesurf/mesh.hpp, as every tessellation but a process's first
+/// does); cold: the same with that cache emptied before each iteration (outside the timing),
+/// as a process's first tessellation pays it; otherwise into a mesh whose buffers are reused
+/// (the arithmetic and the stores alone).
+enum class Buffers { Fresh, Cold, Reused };
 void runTessellate(benchmark::State& state, const VertexFrameSurface& s, std::uint32_t res,
-                   bool fresh) {
+                   Buffers buffers) {
   Mesh reused;
   std::size_t vertices = 0;
+  const bool fresh = buffers != Buffers::Reused;
   for (auto _ : state) {
+    if (buffers == Buffers::Cold) {
+      state.PauseTiming();
+      releaseMeshMemory();
+      state.ResumeTiming();
+    }
     if (fresh) {
       const Mesh mesh = tessellate(s, {res});
       benchmark::DoNotOptimize(mesh.positions.data());
@@ -120,15 +136,24 @@ void runRetessellate(benchmark::State& state, int side, std::uint32_t res) {
 /// The 1,024-frame sheet, tessellated afresh at N = Arg into a new Mesh: allocation, page
 /// faults and freeing included.
 void BM_Tessellate(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), true);
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Fresh);
 }
-BENCHMARK(BM_Tessellate)->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Tessellate)->Apply(meshSizes);
+
+/// The same, each mesh on memory new to the process (the first tessellation's cost).
+void BM_TessellateCold(benchmark::State& state) {
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Cold);
+}
+BENCHMARK(BM_TessellateCold)->Apply(meshSizes);
 
 /// Fresh tessellation at N = Arg 0 on at most Arg 1 threads (oneTBB): the scaling table.
 void BM_TessellateThreads(benchmark::State& state) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(state.range(1)));
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), true);
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Fresh);
 }
 BENCHMARK(BM_TessellateThreads)
     ->Args({33, 1})
@@ -140,20 +165,16 @@ BENCHMARK(BM_TessellateThreads)
 
 /// The same into a Mesh whose buffers are reused (already mapped): no allocation, no faults.
 void BM_TessellateReused(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)), false);
+  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                Buffers::Reused);
 }
-BENCHMARK(BM_TessellateReused)
-    ->Arg(17)
-    ->Arg(33)
-    ->Arg(65)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TessellateReused)->Apply(meshSizes);
 
 /// The 1,024-frame sheet re-tessellated at N = Arg.
 void BM_Retessellate(benchmark::State& state) {
   runRetessellate(state, 32, static_cast<std::uint32_t>(state.range(0)));
 }
-BENCHMARK(BM_Retessellate)->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Retessellate)->Apply(meshSizes);
 
 /// The computation alone, on one thread: a sheet small enough (9 frames at N = 33, 4 at N = 65:
 /// under 1 MB of mesh) that its mesh stays in this core's L2 between calls, so that no time goes to
@@ -161,7 +182,7 @@ BENCHMARK(BM_Retessellate)->Arg(17)->Arg(33)->Arg(65)->UseRealTime()->Unit(bench
 void BM_TessellateInCache(benchmark::State& state) {
   const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   const VertexFrameSurface s = solve(sheet(static_cast<int>(state.range(0))));
-  runTessellate(state, s, static_cast<std::uint32_t>(state.range(1)), false);
+  runTessellate(state, s, static_cast<std::uint32_t>(state.range(1)), Buffers::Reused);
 }
 BENCHMARK(BM_TessellateInCache)
     ->Args({3, 33})
@@ -224,22 +245,12 @@ void writeBaseline(benchmark::State& state, bool triangles) {
 /// Baseline for a fresh tessellation: write the same number of vertices (position and
 /// normal, 6 floats each), the same triangle indices and the same patch ids, computing nothing.
 void BM_WriteVerticesBaseline(benchmark::State& state) { writeBaseline(state, true); }
-BENCHMARK(BM_WriteVerticesBaseline)
-    ->Arg(17)
-    ->Arg(33)
-    ->Arg(65)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteVerticesBaseline)->Apply(meshSizes);
 
 /// The baseline in its own words, "writing the same number of vertices": positions
 /// and normals only (6 floats per vertex), the comparison for re-tessellation.
 void BM_WriteVertexDataBaseline(benchmark::State& state) { writeBaseline(state, false); }
-BENCHMARK(BM_WriteVertexDataBaseline)
-    ->Arg(17)
-    ->Arg(33)
-    ->Arg(65)
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WriteVertexDataBaseline)->Apply(meshSizes);
 
 }  // namespace
 

@@ -4,11 +4,15 @@
 
 #include <chrono>
 #include <cstddef>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/mesh_slice.hpp"
+#include "pdesurf/model.hpp"
 
 namespace pdesurf::cli {
 
@@ -23,23 +27,45 @@ inline double msSince(Clock::time_point t0) {
 
 /// The model's own name, else its file name.
 inline std::string modelName(const std::string& name, const std::string& path) {
-  if (!name.empty()) return name;
-  const auto slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
+  return modelDisplayName(name, path);
 }
 
 /// "1 frame", "2 frames", "1 vertex", "3 vertices".
-inline std::string count(std::size_t n, const std::string& noun) {
-  if (n == 1) return "1 " + noun;
-  if (noun == "vertex") return fmt::format("{} vertices", n);
-  return fmt::format("{} {}{}", n, noun, noun.ends_with("ch") ? "es" : "s");
-}
+inline std::string count(std::size_t n, const std::string& noun) { return countText(n, noun); }
 
 /// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
 inline Mesh readTriangles(const std::string& path) {
   Mesh mesh = readMesh(path);
   if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
   return mesh;
+}
+
+/// The planes and loops `slice` and `rebuild` choose from their shared options (--axis, the
+/// count, --range, --near, --track), checked before any work; a bad --range or --near throws
+/// `UsageError` (the caller's usage error, exit 2) naming the option.
+template <class UsageError>
+SliceOptions sliceOptionsFrom(const std::string& axis, std::uint32_t planes,
+                              const std::vector<double>& range, const std::vector<double>& near,
+                              bool track) {
+  SliceOptions slice;
+  slice.axis = *parseAxis(axis);
+  slice.count = planes;
+  if (!range.empty()) {
+    slice.range = {range[0], range[1]};
+    try {
+      slicePlanes(slice, 0.0, 1.0);  // the range's own checks, before any work
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(fmt::format("--range: {}", e.what()));
+    }
+  }
+  if (!near.empty()) {
+    slice.near = Vec3(near[0], near[1], near[2]);
+    if (!slice.near->allFinite())
+      throw UsageError(
+          fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
+  }
+  slice.track = track;
+  return slice;
 }
 
 }  // namespace pdesurf::cli

@@ -1,19 +1,17 @@
 #include "export_command.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
-#include <span>
 #include <stdexcept>
-#include <variant>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "pdesurf/cad_export.hpp"
+#include "pdesurf/model_io.hpp"
 #include "pdesurf/nurbs.hpp"
-#include "pdesurf/spectral_io.hpp"
-#include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf::cli {
 
@@ -33,26 +31,14 @@ struct Converted {
 };
 
 Converted convert(const std::string& path, const NurbsExportOptions& options) {
-  const AnyModel any = loadModel(path);
+  AnyModel any = loadModel(path);
   Converted out;
-  out.name = modelName(modelNameOf(any), path);
   auto t0 = Clock::now();
-  if (const auto* frames = std::get_if<VertexFrameModel>(&any)) {
-    const VertexFrameSurface surface = solve(*frames);
-    out.solveMs = msSince(t0);
-    t0 = Clock::now();
-    out.nurbs = toNurbs(surface, options);
-  } else if (const auto* bspline = std::get_if<BSplinePdeModel>(&any)) {
-    const SolvedBSplinePde solved = solveBSplineModel(*bspline, path);
-    out.solveMs = msSince(t0);
-    t0 = Clock::now();
-    out.nurbs = toNurbs(std::span<const BSplineSurface>(solved.pieces), options);
-  } else {
-    const SolvedSpectral solved = *solveIfSpectral(any, path);  // the types left
-    out.solveMs = msSince(t0);
-    t0 = Clock::now();
-    out.nurbs = toNurbs(solved, options);
-  }
+  const SolvedModel solved = solveModel(std::move(any), path);
+  out.solveMs = msSince(t0);
+  out.name = solved.displayName();
+  t0 = Clock::now();
+  out.nurbs = toNurbs(solved, options);
   out.convertMs = msSince(t0);
   return out;
 }
@@ -69,7 +55,13 @@ CLI::App* ExportCommand::add(CLI::App& app) {
   toleranceOption = cmd->add_option(
       "--tolerance", tolerance,
       "largest deviation of an approximated face from its patch, in model units (default: "
-      "1e-4 of the model's bounding-box diagonal); also the sewing tolerance");
+      "1e-4 of the model's bounding-box diagonal); also the sewing tolerance. Given, a face "
+      "that cannot meet it is an error; by default such a face is written as the finest fit "
+      "tried, with a warning naming its deviation");
+  cmd->add_option("--max-spans", maxSpans,
+                  "refinement cap of an approximated face, knot spans per direction")
+      ->capture_default_str()
+      ->check(CLI::Range(4u, 4096u));
   cmd->add_flag("--json", json, "print the report as JSON");
   cmd->add_flag("-q,--quiet", quiet, "print nothing on success");
   return cmd;
@@ -83,7 +75,10 @@ int ExportCommand::run() const {
         throw ExportUsageError(
             fmt::format("--tolerance {}: must be a positive, finite distance", tolerance));
       options.tolerance = tolerance;
+    } else {
+      options.keepBest = true;  // the default tolerance is a goal, not a promise asked for
     }
+    options.maxSpans = maxSpans;
     CadFormat format;
     try {
       format = cadFormatFromPath(outPath);
@@ -100,9 +95,24 @@ int ExportCommand::run() const {
     const auto t0 = Clock::now();
     const CadExportReport report = writeCad(nurbs, outPath, format);
     const double writeMs = msSince(t0);
-    if (quiet) return 0;
     const double deviation = nurbs.maxDeviation();
     const double relative = nurbs.diagonal > 0.0 ? deviation / nurbs.diagonal : deviation;
+    // After the report: the warning is the last thing a user reads.
+    const auto warnOverTolerance = [&] {
+      const std::size_t over = nurbs.overToleranceCount();
+      if (over == 0) return;
+      std::fflush(stdout);
+      fmt::print(stderr,
+                 "pdesurf: warning: {}: {} of {} missed the tolerance {:.3g} within {} spans per "
+                 "direction and {} written as the finest fit tried: max deviation {:.3g} ({:.2g} "
+                 "of the bounding-box diagonal); give a larger --tolerance or --max-spans\n",
+                 outPath, count(over, "face"), nurbs.faces.size(), nurbs.tolerance, maxSpans,
+                 over == 1 ? "is" : "are", deviation, relative);
+    };
+    if (quiet) {
+      warnOverTolerance();
+      return 0;
+    }
     const std::size_t exact = nurbs.exactCount();
     if (json) {
       Json faces = Json::array();
@@ -110,6 +120,7 @@ int ExportCommand::run() const {
         faces.push_back({{"patch", f.patch},
                          {"exact", f.exact},
                          {"deviation", f.deviation},
+                         {"within_tolerance", f.withinTolerance},
                          {"poles", {f.surface.uCount, f.surface.vCount}}});
       const Json j = {{"model", modelPath},
                       {"output", outPath},
@@ -120,6 +131,7 @@ int ExportCommand::run() const {
                       {"diagonal", nurbs.diagonal},
                       {"max_deviation", deviation},
                       {"max_deviation_relative", relative},
+                      {"faces_over_tolerance", nurbs.overToleranceCount()},
                       {"sewing",
                        {{"tolerance", report.sewingTolerance},
                         {"shells", report.shells},
@@ -128,6 +140,8 @@ int ExportCommand::run() const {
                         {"degenerated_edges", report.degeneratedEdges}}},
                       {"faces", std::move(faces)}};
       std::cout << j.dump(2) << '\n';
+      std::cout.flush();
+      warnOverTolerance();
       return 0;
     }
     fmt::print(
@@ -140,6 +154,7 @@ int ExportCommand::run() const {
                count(report.freeEdges, "free edge"),
                count(report.degeneratedEdges, "degenerated edge"),
                report.multipleEdges ? ", " + count(report.multipleEdges, "multiple edge") : "");
+    warnOverTolerance();
     return 0;
   } catch (const ExportUsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());

@@ -2,15 +2,19 @@
 // CASCADE (docs/nurbs-export.md).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "pdesurf/nurbs.hpp"
 
 namespace pdesurf::cli {
 
 struct ExportCommand {
   std::string modelPath, outPath;
   double tolerance = 0.0;
+  std::uint32_t maxSpans = NurbsExportOptions{}.maxSpans;
   bool json = false, quiet = false;
   CLI::Option* toleranceOption = nullptr;
 

@@ -2,17 +2,20 @@
 // Exit codes: 0 success, 1 bad input (model or mesh file), 2 usage error.
 #include <csignal>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "bspline_commands.hpp"
 #include "cli_common.hpp"
 #include "distance_report.hpp"
 #include "export_command.hpp"
@@ -22,8 +25,8 @@
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/mesh_slice.hpp"
+#include "pdesurf/model.hpp"
 #include "pdesurf/model_io.hpp"
-#include "pdesurf/spectral_io.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "rebuild_command.hpp"
 #include "server.hpp"
@@ -36,7 +39,6 @@ using cli::Clock;
 using cli::count;
 using cli::kExitInput;
 using cli::kExitUsage;
-using cli::modelName;
 using cli::msSince;
 using cli::readTriangles;
 
@@ -58,19 +60,21 @@ struct SolveArgs {
     cmd->add_option("--seed-frame", seedFrame, "local solver: the frame generation starts from")
         ->capture_default_str();
   }
-  SolveOptions options(const VertexFrameModel& model) const {
-    if (seedFrame >= model.frames.size())
-      throw UsageError(
-          fmt::format("--seed-frame {}: out of range, the model has {} frame{} "
-                      "(indices 0 to {})",
-                      seedFrame, model.frames.size(), model.frames.size() == 1 ? "" : "s",
-                      model.frames.size() - 1));
-    return {solver == "local" ? Solver::Local : Solver::Global, seedFrame};
+  /// The options for `model`; a seed frame it does not have is a usage error.
+  SolveOptions options(const AnyModel& model) const {
+    const SolveOptions options{solver == "local" ? Solver::Local : Solver::Global, seedFrame};
+    try {
+      checkSolveOptions(model, options);
+    } catch (const std::out_of_range& e) {
+      throw UsageError(fmt::format("--seed-frame {}: {}", seedFrame, e.what()));
+    }
+    return options;
   }
 };
 
-void printNotes(const VertexFrameSurface& surface, const std::string& model) {
-  for (const std::string& note : surface.notes) fmt::print(stderr, "{}: note: {}\n", model, note);
+void printNotes(const SolvedModel& solved) {
+  for (const std::string& note : solved.notes())
+    fmt::print(stderr, "{}: note: {}\n", solved.source(), note);
 }
 
 /// An output path pdesurf cannot write (by its extension) is a usage error, found before
@@ -83,11 +87,23 @@ void checkMeshExtension(const std::string& outPath) {
   }
 }
 
+/// Solves a model of any type with the command's solver options (vertex frames), printing
+/// the solver's notes.
+SolvedModel solveWith(AnyModel any, const std::string& modelPath, const SolveArgs& args) {
+  const SolveOptions options = args.options(any);
+  SolvedModel solved = solveModel(std::move(any), modelPath, options);
+  printNotes(solved);
+  return solved;
+}
+
+SolvedModel loadSolved(const std::string& modelPath, const SolveArgs& args) {
+  return solveWith(loadModel(modelPath), modelPath, args);
+}
+
 /// A model of any type solved and tessellated: what `build` writes and `compare` measures.
 struct BuiltModel {
   std::string name;
-  std::string summary;  ///< "3 frames, 2 strips" / "spectral, order 12, 1 patch"
-  std::string quality;  ///< "C0 gap 0" / "condition error 1e-15" / "joint C0 gap 0"
+  ModelReport report;
   Mesh mesh;
   double solveMs = 0.0, tessMs = 0.0;
 };
@@ -95,162 +111,192 @@ struct BuiltModel {
 BuiltModel buildModel(const std::string& modelPath, std::uint32_t resolution,
                       const SolveArgs& args) {
   BuiltModel built;
-  const AnyModel any = loadModel(modelPath);
-  built.name = modelName(modelNameOf(any), modelPath);
-  if (const auto* model = std::get_if<VertexFrameModel>(&any)) {
-    const SolveOptions options = args.options(*model);
-    auto t0 = Clock::now();
-    const VertexFrameSurface surface = solve(*model, options);
-    built.solveMs = msSince(t0);
-    printNotes(surface, modelPath);
-    t0 = Clock::now();
-    built.mesh = tessellate(surface, {resolution});
-    built.tessMs = msSince(t0);
-    built.summary = fmt::format("{}, {}", count(model->frames.size(), "frame"),
-                                count(surface.topology->stripCount, "strip"));
-    built.quality = fmt::format("C0 gap {:.3g}", measureC0Gap(surface).maxGap);
-    return built;
-  }
-  if (const auto* model = std::get_if<BSplinePdeModel>(&any)) {
-    auto t0 = Clock::now();
-    const SolvedBSplinePde solved = solveBSplineModel(*model, modelPath);
-    built.solveMs = msSince(t0);
-    t0 = Clock::now();
-    built.mesh = tessellate(solved, resolution);
-    built.tessMs = msSince(t0);
-    built.summary = cli::bsplineSummary(solved);
-    built.quality = cli::bsplineQuality(solved);
-    return built;
-  }
+  AnyModel any = loadModel(modelPath);
   auto t0 = Clock::now();
-  const SolvedSpectral solved = *solveIfSpectral(any, modelPath);  // the types left
+  const SolvedModel solved = solveWith(std::move(any), modelPath, args);
   built.solveMs = msSince(t0);
+  built.name = solved.displayName();
   t0 = Clock::now();
-  built.mesh = tessellate(solved, resolution);
+  built.mesh = tessellate(solved, {resolution});
   built.tessMs = msSince(t0);
-  const SpectralPatch& first = solved.patchAt(0);
-  built.summary =
-      fmt::format("{}, order {}, {} mode{}, {}", solved.type, first.op().order(), first.modes(),
-                  first.modes() == 1 ? "" : "s", count(solved.patchCount(), "patch"));
-  double worst = 0.0;
-  for (std::size_t k = 0; k < solved.patchCount(); ++k)
-    for (double e : conditionErrors(solved.patchAt(k))) worst = std::max(worst, e);
-  built.quality = fmt::format("condition error {:.3g}", worst);
-  if (solved.chain) {
-    double gap = 0.0;
-    for (const JointGap& g : measureJointGaps(*solved.chain)) gap = std::max(gap, g.c0Relative);
-    built.quality += fmt::format(", joint C0 gap {:.3g}", gap);
-  }
+  built.report = report(solved);
   return built;
 }
 
-int runBuild(const std::string& modelPath, const std::string& outPath, std::uint32_t resolution,
-             const SolveArgs& args, bool quiet) {
-  checkMeshExtension(outPath);
-  const BuiltModel built = buildModel(modelPath, resolution, args);
-  const Mesh& mesh = built.mesh;
-  auto t0 = Clock::now();
-  writeMesh(mesh, outPath);
-  const double writeMs = msSince(t0);
-  if (!quiet)
-    fmt::print(
-        "{}: {}, {}, {}, {} -> {} "
-        "(solve {:.3f} ms, tessellate {:.3f} ms, write {:.1f} ms)\n",
-        built.name, built.summary, count(mesh.vertexCount(), "vertex"),
-        count(mesh.triangleCount(), "triangle"), built.quality, outPath, built.solveMs,
-        built.tessMs, writeMs);
-  return 0;
-}
+/// `pdesurf build`: solve a model and write its mesh.
+struct BuildCommand {
+  std::string modelPath, outPath;
+  std::uint32_t resolution = 17;
+  bool quiet = false;
+  SolveArgs solveArgs;
 
-int runSample(const std::string& modelPath, std::uint32_t grid, const SolveArgs& args) {
-  AnyModel any = loadModel(modelPath);
-  if (auto solved = solveIfSpectral(any, modelPath)) {
-    std::cout << cli::sampleJson(*solved, grid);
-    return 0;
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand("build",
+                                       "Solve a model and write its mesh (OBJ, PLY, STL, "
+                                       "glb or OFF, chosen by the output's extension)");
+    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    cmd->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb .off")
+        ->required();
+    cmd->add_option("--resolution", resolution, "samples per patch side")
+        ->check(CLI::Range(2u, 4097u))
+        ->capture_default_str();
+    cmd->add_flag("-q,--quiet", quiet, "print nothing on success");
+    solveArgs.add(cmd);
+    return cmd;
   }
-  if (const auto* m = std::get_if<BSplinePdeModel>(&any)) {
-    std::cout << cli::bsplineSampleJson(solveBSplineModel(*m, modelPath), grid);
-    return 0;
-  }
-  const VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
-  const VertexFrameSurface surface = solve(model, args.options(model));
-  printNotes(surface, modelPath);
-  // nlohmann writes doubles in their shortest round-trip form.
-  nlohmann::json patches = nlohmann::json::array();
-  for (std::size_t k = 0; k < surface.patches.size(); ++k) {
-    nlohmann::json points = nlohmann::json::array();
-    for (std::uint32_t j = 0; j < grid; ++j)
-      for (std::uint32_t i = 0; i < grid; ++i) {
-        const double u = static_cast<double>(i) / (grid - 1);
-        const double v = static_cast<double>(j) / (grid - 1);
-        const Vec3 p = surface.patches[k].position(u, v);
-        points.push_back({p.x(), p.y(), p.z()});
-      }
-    patches.push_back({{"frame", k}, {"grid", grid}, {"points", std::move(points)}});
-  }
-  std::cout << nlohmann::json{{"patches", std::move(patches)}}.dump() << '\n';
-  return 0;
-}
 
-int runInfo(const std::string& modelPath, bool json, const SolveArgs& args) {
-  AnyModel any = loadModel(modelPath);
-  if (auto solved = solveIfSpectral(any, modelPath)) {
-    std::cout << cli::infoText(*solved, modelPath, modelNameOf(any), json);
+  int run() const {
+    checkMeshExtension(outPath);
+    const BuiltModel built = buildModel(modelPath, resolution, solveArgs);
+    const Mesh& mesh = built.mesh;
+    auto t0 = Clock::now();
+    writeMesh(mesh, outPath);
+    const double writeMs = msSince(t0);
+    if (!quiet)
+      fmt::print(
+          "{}: {}, {}, {}, {} -> {} "
+          "(solve {:.3f} ms, tessellate {:.3f} ms, write {:.1f} ms)\n",
+          built.name, built.report.summary, count(mesh.vertexCount(), "vertex"),
+          count(mesh.triangleCount(), "triangle"), built.report.quality, outPath, built.solveMs,
+          built.tessMs, writeMs);
     return 0;
   }
-  if (const auto* m = std::get_if<BSplinePdeModel>(&any)) {
-    std::cout << cli::bsplineInfoText(*m, solveBSplineModel(*m, modelPath), modelPath, json);
+};
+
+/// `pdesurf sample`: every patch on a grid, as JSON.
+struct SampleCommand {
+  std::string modelPath;
+  std::uint32_t grid = 0;
+  SolveArgs solveArgs;
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "sample",
+        "Print each patch sampled on a grid as JSON: points[j*N+i] = S(i/(N-1), j/(N-1))");
+    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    cmd->add_option("--grid", grid, "samples per patch side (N)")
+        ->required()
+        ->check(CLI::Range(2u, 4097u));
+    solveArgs.add(cmd);
+    return cmd;
+  }
+
+  int run() const {
+    // Keys in the order written; doubles in their shortest round-trip form.
+    nlohmann::ordered_json patches = nlohmann::ordered_json::array();
+    for (const PatchSamples& p : sample(loadSolved(modelPath, solveArgs), grid)) {
+      nlohmann::ordered_json points = nlohmann::ordered_json::array();
+      for (const Vec3& q : p.points) points.push_back({q.x(), q.y(), q.z()});
+      nlohmann::ordered_json patch = {{p.label, p.index}, {"grid", p.grid}};
+      if (p.u) patch["u"] = {p.u->first, p.u->second};
+      if (p.origin) patch["origin"] = {(*p.origin)[0], (*p.origin)[1]};
+      patch["points"] = std::move(points);
+      patches.push_back(std::move(patch));
+    }
+    std::cout << nlohmann::ordered_json{{"patches", std::move(patches)}}.dump() << '\n';
     return 0;
   }
-  const VertexFrameModel model = std::get<VertexFrameModel>(std::move(any));
-  const VertexFrameSurface surface = solve(model, args.options(model));
-  printNotes(surface, modelPath);
-  const C0Report c0 = measureC0Gap(surface);
-  const Bounds b = surfaceBounds(surface);
-  const double diag = b.diagonal();
-  const double rel = diag > 0.0 ? c0.maxGap / diag : c0.maxGap;
-  std::size_t pinned = 0;
-  for (auto p : surface.topology->stripPinned) pinned += p;
-  const std::size_t storage = storageBytes(model);
-  const std::size_t coincident = coincidentVertices(model);
-  if (json) {
-    nlohmann::json j = {
-        {"model", modelPath},
-        {"name", model.name},
-        {"vertices", model.vertices.size()},
-        {"frames", model.frames.size()},
-        {"strips", surface.topology->stripCount},
-        {"pinned_strips", pinned},
-        {"edges", surface.topology->edges.size()},
-        {"shared_edges", c0.sharedEdges},
-        {"orientable", surface.topology->orientable},
-        {"c0_gap", c0.maxGap},
-        {"c0_gap_relative", rel},
-        {"bbox",
-         {{"min", {b.min.x(), b.min.y(), b.min.z()}}, {"max", {b.max.x(), b.max.y(), b.max.z()}}}},
-        {"storage_bytes", storage},
-        {"coincident_vertices", coincident},
-        {"solver", args.solver},
-        {"notes", surface.notes}};
-    std::cout << j.dump(2) << '\n';
+};
+
+/// `pdesurf info`: counts, quality figures, bounding box, storage.
+struct InfoCommand {
+  std::string modelPath;
+  bool json = false;
+  SolveArgs solveArgs;
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "info", "Counts, the largest C0 gap on shared edges, bounding box and storage size");
+    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    cmd->add_flag("--json", json, "print JSON");
+    solveArgs.add(cmd);
+    return cmd;
+  }
+
+  int run() const {
+    std::cout << infoText(loadSolved(modelPath, solveArgs), json);
     return 0;
   }
-  fmt::print("model      {}{}\n", modelPath, model.name.empty() ? "" : " (" + model.name + ")");
-  fmt::print("vertices   {}\nframes     {}\n", model.vertices.size(), model.frames.size());
-  fmt::print("strips     {} ({} pinned to 0)\n", surface.topology->stripCount, pinned);
-  fmt::print("edges      {} ({} shared)\n", surface.topology->edges.size(), c0.sharedEdges);
-  fmt::print("C0 gap     {} (relative to the bounding-box diagonal: {})\n", c0.maxGap, rel);
-  fmt::print("bbox       [{}, {}, {}] to [{}, {}, {}]\n", b.min.x(), b.min.y(), b.min.z(),
-             b.max.x(), b.max.y(), b.max.z());
-  fmt::print("storage    {} bytes (numbers to six significant digits)\n", storage);
-  if (!surface.topology->orientable) fmt::print("orientable no\n");
-  if (coincident > 0)
-    fmt::print(
-        "warning    {} {} where another vertex stands, under another index: frames "
-        "meet only through shared indices, so the surface may have cracks there\n",
-        coincident, coincident == 1 ? "vertex stands" : "vertices stand");
-  return 0;
-}
+};
+
+/// `pdesurf studio`: the studio server until Ctrl-C.
+struct StudioCommand {
+  std::string modelPath;
+  pdesurf::studio::StudioOptions options;
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "studio", "Serve a model for interactive editing in a browser (until Ctrl-C)");
+    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    cmd->add_option("--root", options.root,
+                    "folder the studio may open and write in (default: the model's folder)");
+    cmd->add_option("--port", options.port, "port to listen on (0: any free port)")
+        ->check(CLI::Range(0, 65535))
+        ->capture_default_str();
+    cmd->add_option("--host", options.host, "address to listen on")->capture_default_str();
+    cmd->add_flag_callback(
+        "--no-token", [this] { options.requireToken = false; },
+        "UNSAFE, for tests only: serve the API without the per-launch token of the printed URL "
+        "(any program of any local user may then read and change the models)");
+    return cmd;
+  }
+
+  int run() const { return pdesurf::studio::runStudio(modelPath, options); }
+};
+
+/// `pdesurf fit`: Fourier fits of the closed curves of a curves file.
+struct FitCommand {
+  std::string curvesPath;
+  std::vector<std::uint32_t> terms;
+  bool uniform = false, json = false;
+
+  static constexpr const char* kHelp =
+      "Fit each closed curve of a curves file (a cross-sections model or {\"curves\": [...]}) by "
+      "a Fourier series; print the largest and mean distance of the points per number of terms";
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand("fit", kHelp);
+    cmd->add_option("curves", curvesPath, "curves file (JSON)")->required();
+    cmd->add_option("--terms", terms, "numbers of Fourier terms N (one or more)")
+        ->required()
+        ->check(CLI::Range(0u, 512u));
+    cmd->add_flag("--uniform", uniform,
+                  "give points uniform v (default: chord length, as the seeds)");
+    cmd->add_flag("--json", json, "print JSON");
+    return cmd;
+  }
+
+  int run() const {
+    std::cout << cli::fitReport(curvesPath, terms, !uniform, json);
+    return 0;
+  }
+};
+
+/// `pdesurf spine`: A0(u) of a spectral or cross-sections model.
+struct SpineCommand {
+  std::string modelPath;
+  std::uint32_t count = 33;
+
+  CLI::App* add(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand(
+        "spine", "Print the spine A0(u) of a spectral or cross-sections model as JSON polylines");
+    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    cmd->add_option("--count", count, "points per patch")
+        ->check(CLI::Range(2u, 100000u))
+        ->capture_default_str();
+    return cmd;
+  }
+
+  int run() const {
+    const SolvedModel solved = loadAndSolve(modelPath);
+    if (!solved.spectral())
+      throw UsageError(fmt::format(
+          "{}: only spectral and cross-sections models have a spine (this is a {} model)",
+          modelPath, solved.type()));
+    std::cout << cli::spineJson(*solved.spectral(), count);
+    return 0;
+  }
+};
 
 /// JSON that keeps its keys in the order written (slice and compare output).
 using Json = nlohmann::ordered_json;
@@ -295,24 +341,7 @@ struct SliceCommand {
   }
 
   int run() const {
-    SliceOptions options;
-    options.axis = *parseAxis(axis);
-    options.count = count;
-    if (!range.empty()) {
-      options.range = {range[0], range[1]};
-      try {
-        slicePlanes(options, 0.0, 1.0);  // the range's own checks, before any work
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(fmt::format("--range: {}", e.what()));
-      }
-    }
-    if (!near.empty()) {
-      options.near = Vec3(near[0], near[1], near[2]);
-      if (!options.near->allFinite())
-        throw UsageError(
-            fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
-    }
-    options.track = track;
+    const SliceOptions options = cli::sliceOptionsFrom<UsageError>(axis, count, range, near, track);
     const Mesh mesh = readTriangles(meshPath);
     std::vector<MeshSection> sections;
     try {
@@ -459,7 +488,7 @@ struct CoonsCommand {
     AnyModel any = loadModel(modelPath);
     const auto* model = std::get_if<VertexFrameModel>(&any);
     if (!model) throw UsageError(fmt::format("{}: coons takes a vertex-frames model", modelPath));
-    const VertexFrameSurface surface = solve(*model, solveArgs.options(*model));
+    const VertexFrameSurface surface = solve(*model, solveArgs.options(any));
     std::vector<std::uint32_t> which = frames;
     if (which.empty())
       for (std::uint32_t k = 0; k < surface.patches.size(); ++k) which.push_back(k);
@@ -484,7 +513,7 @@ struct CoonsCommand {
     }
     const Mesh mesh = tessellate(patches, resolution);
     writeMesh(mesh, outPath);
-    fmt::print("{}: {} {} Coons patch{} -> {} ({}, {})\n", modelName(model->name, modelPath),
+    fmt::print("{}: {} {} Coons patch{} -> {} ({}, {})\n", modelDisplayName(model->name, modelPath),
                patches.size(), bilinear ? "bilinear" : "bicubic", patches.size() == 1 ? "" : "es",
                outPath, count(mesh.vertexCount(), "vertex"),
                count(mesh.triangleCount(), "triangle"));
@@ -512,86 +541,16 @@ int main(int argc, char** argv) {
                  "the output is the same for any number")
       ->check(CLI::Range(0u, 4096u));
 
-  std::string modelPath, outPath;
-  std::uint32_t resolution = 17, grid = 0;
-  bool json = false, quiet = false;
-  SolveArgs solveArgs;
-
-  CLI::App* build = app.add_subcommand("build",
-                                       "Solve a model and write its mesh (OBJ, PLY, STL, "
-                                       "glb or OFF, chosen by the output's extension)");
-  build->add_option("model", modelPath, "model file (JSON)")->required();
-  build->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb .off")
-      ->required();
-  build->add_option("--resolution", resolution, "samples per patch side")
-      ->check(CLI::Range(2u, 4097u))
-      ->capture_default_str();
-  build->add_flag("-q,--quiet", quiet, "print nothing on success");
-  solveArgs.add(build);
-
-  CLI::App* sample = app.add_subcommand(
-      "sample", "Print each patch sampled on a grid as JSON: points[j*N+i] = S(i/(N-1), j/(N-1))");
-  sample->add_option("model", modelPath, "model file (JSON)")->required();
-  sample->add_option("--grid", grid, "samples per patch side (N)")
-      ->required()
-      ->check(CLI::Range(2u, 4097u));
-  solveArgs.add(sample);
-
-  CLI::App* info = app.add_subcommand(
-      "info", "Counts, the largest C0 gap on shared edges, bounding box and storage size");
-  info->add_option("model", modelPath, "model file (JSON)")->required();
-  info->add_flag("--json", json, "print JSON");
-  solveArgs.add(info);
-
-  pdesurf::studio::StudioOptions studioOptions;
-  CLI::App* studio = app.add_subcommand(
-      "studio", "Serve a model for interactive editing in a browser (until Ctrl-C)");
-  studio->add_option("model", modelPath, "model file (JSON)")->required();
-  studio->add_option("--root", studioOptions.root,
-                     "folder the studio may open and write in (default: the model's folder)");
-  studio->add_option("--port", studioOptions.port, "port to listen on (0: any free port)")
-      ->check(CLI::Range(0, 65535))
-      ->capture_default_str();
-  studio->add_option("--host", studioOptions.host, "address to listen on")->capture_default_str();
-  studio->add_flag_callback(
-      "--no-token", [&studioOptions] { studioOptions.requireToken = false; },
-      "UNSAFE, for tests only: serve the API without the per-launch token of the printed URL "
-      "(any program of any local user may then read and change the models)");
-
-  std::vector<std::uint32_t> fitTerms;
-  bool fitUniform = false;
-  CLI::App* fit = app.add_subcommand(
-      "fit",
-      "Fit each closed curve of a curves file (a cross-sections model or {\"curves\": [...]}) "
-      "by a Fourier series; print the largest and mean distance of the points per number of "
-      "terms");
-  fit->add_option("curves", modelPath, "curves file (JSON)")->required();
-  fit->add_option("--terms", fitTerms, "numbers of Fourier terms N (one or more)")
-      ->required()
-      ->check(CLI::Range(0u, 512u));
-  fit->add_flag("--uniform", fitUniform,
-                "give points uniform v (default: chord length, as the seeds)");
-  fit->add_flag("--json", json, "print JSON");
-
-  std::uint32_t spineCount = 33;
-  CLI::App* spine = app.add_subcommand(
-      "spine", "Print the spine A0(u) of a spectral or cross-sections model as JSON polylines");
-  spine->add_option("model", modelPath, "model file (JSON)")->required();
-  spine->add_option("--count", spineCount, "points per patch")
-      ->check(CLI::Range(2u, 100000u))
-      ->capture_default_str();
-
-  CoonsCommand coonsCommand;
-  CLI::App* coons = coonsCommand.add(app);
-
-  SliceCommand sliceCommand;
-  CLI::App* slice = sliceCommand.add(app);
-  CompareCommand compareCommand;
-  CLI::App* compare = compareCommand.add(app);
-  cli::ExportCommand exportCommand;
-  CLI::App* exportCmd = exportCommand.add(app);
-  cli::RebuildCommand rebuildCommand;
-  CLI::App* rebuild = rebuildCommand.add(app);
+  // Every command, in the order --help lists them, and what runs the one given.
+  std::tuple<BuildCommand, SampleCommand, InfoCommand, StudioCommand, FitCommand, SpineCommand,
+             CoonsCommand, SliceCommand, CompareCommand, cli::ExportCommand, cli::RebuildCommand>
+      commands;
+  std::vector<std::pair<CLI::App*, std::function<int()>>> registered;
+  std::apply(
+      [&](auto&... command) {
+        (registered.emplace_back(command.add(app), [&command] { return command.run(); }), ...);
+      },
+      commands);
 
   try {
     app.parse(argc, argv);
@@ -611,29 +570,9 @@ int main(int argc, char** argv) {
   if (threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
   try {
-    if (*build) return runBuild(modelPath, outPath, resolution, solveArgs, quiet);
-    if (*sample) return runSample(modelPath, grid, solveArgs);
-    if (*studio) return pdesurf::studio::runStudio(modelPath, studioOptions);
-    if (*slice) return sliceCommand.run();
-    if (*coons) return coonsCommand.run();
-    if (*fit) {
-      std::cout << cli::fitReport(modelPath, fitTerms, !fitUniform, json);
-      return 0;
-    }
-    if (*spine) {
-      AnyModel any = loadModel(modelPath);
-      auto solved = solveIfSpectral(any, modelPath);
-      if (!solved)
-        throw UsageError(fmt::format(
-            "{}: only spectral and cross-sections models have a spine (this is a {} model)",
-            modelPath, modelTypeName(any)));
-      std::cout << cli::spineJson(*solved, spineCount);
-      return 0;
-    }
-    if (*compare) return compareCommand.run();
-    if (*exportCmd) return exportCommand.run();
-    if (*rebuild) return rebuildCommand.run();
-    return runInfo(modelPath, json, solveArgs);
+    for (const auto& [command, run] : registered)
+      if (*command) return run();
+    return kExitUsage;  // require_subcommand(1): not reached
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());
     return kExitUsage;

@@ -24,6 +24,7 @@
 #include "pdesurf/rebuild.hpp"
 #include "pdesurf/section_rebuild.hpp"
 #include "pdesurf/spectral_io.hpp"
+#include "pdesurf/tube_layout.hpp"
 
 namespace pdesurf::cli {
 
@@ -88,6 +89,12 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
   cmd->add_option("--grid", grid,
                   "vertex-frames: U V, a grid of U × V frames laid on a mesh with one boundary "
                   "loop through its parameterisation onto a square")
+      ->expected(2)
+      ->check(CLI::Range(1u, 1000u));
+  cmd->add_option("--tube", tube,
+                  "vertex-frames: RINGS SECTORS, a tube of frames on the part of the mesh that "
+                  "--axis, --range, --near and --track choose (rings from slicing, sectors "
+                  "closed round the tube)")
       ->expected(2)
       ->check(CLI::Range(1u, 1000u));
   cmd->add_option("--iterations", iterations, "vertex-frames: most fitting iterations")
@@ -188,6 +195,10 @@ int RebuildCommand::run() const {
   }
 }
 
+SliceOptions RebuildCommand::sliceOptions() const {
+  return sliceOptionsFrom<RebuildUsageError>(axis, sectionCount, range, near, track);
+}
+
 int RebuildCommand::runCrossSections() const {
   if (!std::isfinite(a) || a == 0.0)
     throw RebuildUsageError(fmt::format("--a {}: a must be finite and non-zero", a));
@@ -198,23 +209,7 @@ int RebuildCommand::runCrossSections() const {
   if (!outPath.empty() && !outPath.ends_with(".json"))
     throw RebuildUsageError(fmt::format("-o {}: a model file ends in .json", outPath));
   SectionRebuildOptions options;
-  options.slice.axis = *parseAxis(axis);
-  options.slice.count = sectionCount;
-  if (!range.empty()) {
-    options.slice.range = {range[0], range[1]};
-    try {
-      slicePlanes(options.slice, 0.0, 1.0);  // the range's own checks, before any work
-    } catch (const std::invalid_argument& e) {
-      throw RebuildUsageError(fmt::format("--range: {}", e.what()));
-    }
-  }
-  if (!near.empty()) {
-    options.slice.near = Vec3(near[0], near[1], near[2]);
-    if (!options.slice.near->allFinite())
-      throw RebuildUsageError(
-          fmt::format("--near: {} {} {} is not a finite point", near[0], near[1], near[2]));
-  }
-  options.slice.track = track;
+  options.slice = sliceOptions();
   options.modes = modes;
   options.exact = exact;
   options.prep.points = points;
@@ -317,16 +312,27 @@ int RebuildCommand::runCrossSections() const {
 int RebuildCommand::runVertexFrames() const {
   const VertexFrameRebuildArgs& args = vertexFrames;
   if (outPath.empty()) throw RebuildUsageError("--as vertex-frames: -o MODEL.json is required");
-  if (args.layoutPath.empty() == args.grid.empty())
-    throw RebuildUsageError("--as vertex-frames: give one of --layout QUADS and --grid U V");
+  if (int(!args.layoutPath.empty()) + int(!args.grid.empty()) + int(!args.tube.empty()) != 1)
+    throw RebuildUsageError(
+        "--as vertex-frames: give one of --layout QUADS, --grid U V and --tube RINGS SECTORS");
+  if (!args.tube.empty() && args.tube[1] < 3)
+    throw RebuildUsageError(
+        "--tube: a tube needs at least 3 sectors round it (two would join along both sides)");
+  const SliceOptions slice = sliceOptions();
 
   auto t0 = Clock::now();
-  const Mesh mesh = readTriangles(meshPath);
+  Mesh mesh = readTriangles(meshPath);
   VertexFrameModel layout;
   if (!args.layoutPath.empty()) {
     layout = quadLayout(readPolygonMesh(args.layoutPath), args.layoutPath);
-  } else {
+  } else if (!args.grid.empty()) {
     layout = gridLayout(mesh, {args.grid[0], args.grid[1]}, meshPath);
+  } else {
+    // The tube is fitted to, and measured against, the part between its end planes.
+    TubeLayout tube = tubeLayout(mesh, {args.tube[0], args.tube[1], slice}, meshPath);
+    layout = std::move(tube.model);
+    mesh = std::move(tube.part);
+    if (!partPath.empty()) writeMesh(mesh, partPath);
   }
   layout.name = std::filesystem::path(meshPath).stem().string() + " (vertex frames)";
   const double layoutMs = msSince(t0);
@@ -368,8 +374,9 @@ int RebuildCommand::runVertexFrames() const {
              count(fitted.model.frames.size(), "frame"),
              count(fitted.model.vertices.size(), "vertex"),
              count(fitted.iterations.size() - 1, "iteration"), outPath, layoutMs, fitMs);
-  fmt::print("{} at resolution {}; {}: {}, bounding-box diagonal {:.6g}\n", outPath, resolution,
-             meshPath, count(mesh.triangleCount(), "triangle"), d.diagonal);
+  fmt::print("{} at resolution {}; {}{}: {}, bounding-box diagonal {:.6g}\n", outPath, resolution,
+             meshPath, args.tube.empty() ? "" : " (the part between the end planes)",
+             count(mesh.triangleCount(), "triangle"), d.diagonal);
   printDistances(d);
   fmt::print("storage        {} bytes (numbers to six significant digits)\n",
              storageBytes(fitted.model));

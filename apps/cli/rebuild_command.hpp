@@ -9,12 +9,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include "pdesurf/mesh_slice.hpp"
+
 namespace pdesurf::cli {
 
 /// `--as vertex-frames`: a layout (a quad mesh, or a U × V grid on a disk) fitted to the mesh.
 struct VertexFrameRebuildArgs {
   std::string layoutPath;
   std::vector<std::uint32_t> grid;  ///< U V
+  std::vector<std::uint32_t> tube;  ///< RINGS SECTORS (the part chosen by --axis/--range/--near)
   std::uint32_t iterations = 30;
   double tolerance = 1e-3;
   double smoothness = 1e-5;
@@ -48,6 +51,8 @@ struct RebuildCommand {
 
  private:
   int runCrossSections() const;
+  /// --axis, --count, --range, --near, --track as slicing options (usage errors thrown).
+  SliceOptions sliceOptions() const;
   int runVertexFrames() const;
 };
 

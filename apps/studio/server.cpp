@@ -34,12 +34,18 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "pdesurf/analysis.hpp"
+#include "http_error.hpp"
+#include "journal.hpp"
+#include "mesh_wire.hpp"
 #include "pdesurf/atomic_file.hpp"
+#include "pdesurf/cad_export.hpp"
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model.hpp"
 #include "pdesurf/model_io.hpp"
+#include "pdesurf/nurbs.hpp"
 #include "pdesurf/session.hpp"
-#include "pdesurf/spectral_io.hpp"
+#include "root_sandbox.hpp"
 // After Eigen: httplib.h brings <resolv.h>, whose `_res` macro breaks Eigen's headers.
 #include <httplib.h>
 
@@ -103,14 +109,6 @@ std::string urlHost(const std::string& host) {
   return host.find(':') != std::string::npos ? "[" + host + "]" : host;
 }
 
-/// A request that cannot be served: the status and the message of {"error": ...}.
-struct HttpError {
-  int status;
-  std::string message;
-};
-
-[[noreturn]] void fail(int status, std::string message) { throw HttpError{status, message}; }
-
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
@@ -122,8 +120,6 @@ std::string readFile(const fs::path& path) {
   text << in.rdbuf();
   return text.str();
 }
-
-fs::path autosavePath(const fs::path& model) { return fs::path(model.string() + ".autosave"); }
 
 void sendJson(httplib::Response& res, const Json& body, int status = 200) {
   res.status = status;
@@ -186,79 +182,6 @@ std::string defaultWebDir() {
   return (fs::path(__FILE__).parent_path().parent_path().parent_path() / "web" / "dist").string();
 }
 
-/// Writes the autosave journal on its own thread, so an edit's answer never waits for the
-/// serialisation and the disk. Only the latest model matters: a snapshot still pending when
-/// a newer one arrives is replaced. Writes are atomic (temporary file, then rename).
-class Journal {
- public:
-  Journal() : thread_([this] { run(); }) {}
-  ~Journal() {
-    {
-      std::lock_guard lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();  // run() writes what is pending before it returns
-  }
-  Journal(const Journal&) = delete;
-  Journal& operator=(const Journal&) = delete;
-
-  void write(fs::path path, AnyModel model) {
-    {
-      std::lock_guard lock(mutex_);
-      pending_.emplace(Job{std::move(path), std::move(model)});
-    }
-    wake_.notify_all();
-  }
-
-  /// Drops a pending write and waits for one in progress: afterwards no journal file is
-  /// written until the next write() (call before removing or reading a journal).
-  void cancel() {
-    std::unique_lock lock(mutex_);
-    pending_.reset();
-    idle_.wait(lock, [this] { return !busy_; });
-  }
-
-  /// Waits until every write asked for is on disk.
-  void flush() {
-    std::unique_lock lock(mutex_);
-    idle_.wait(lock, [this] { return !busy_ && !pending_; });
-  }
-
- private:
-  struct Job {
-    fs::path path;
-    AnyModel model;
-  };
-
-  void run() {
-    std::unique_lock lock(mutex_);
-    for (;;) {
-      wake_.wait(lock, [this] { return stop_ || pending_; });
-      if (!pending_) return;  // stopping, nothing left to write
-      Job job = std::move(*pending_);
-      pending_.reset();
-      busy_ = true;
-      lock.unlock();
-      try {
-        writeFileAtomically(job.path.string(), serializeModel(job.model));
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "pdesurf studio: autosave: %s\n", e.what());
-      }
-      lock.lock();
-      busy_ = false;
-      idle_.notify_all();
-    }
-  }
-
-  std::mutex mutex_;
-  std::condition_variable wake_, idle_;
-  std::optional<Job> pending_;
-  bool busy_ = false;
-  bool stop_ = false;
-  std::thread thread_;  // last: started once the members above exist
-};
-
 class StudioServer::Impl {
  public:
   Impl(const std::string& modelPath, StudioOptions options)
@@ -271,11 +194,11 @@ class StudioServer::Impl {
     const fs::path root = options_.root.empty() ? model.parent_path() : fs::path(options_.root);
     if (!fs::is_directory(root, ec))
       throw StudioError(fmt::format("--root {}: not a folder", root.string()));
-    root_ = fs::canonical(root, ec);
+    sandbox_ = RootSandbox(fs::canonical(root, ec));
     if (ec) throw StudioError(fmt::format("--root {}: {}", root.string(), ec.message()));
-    if (!inside(model))
-      throw StudioError(
-          fmt::format("{}: the model is outside the root folder {}", modelPath, root_.string()));
+    if (!sandbox_.inside(model))
+      throw StudioError(fmt::format("{}: the model is outside the root folder {}", modelPath,
+                                    sandbox_.root().string()));
     openModel(model, modelPath);
     routes();
   }
@@ -312,7 +235,7 @@ class StudioServer::Impl {
                        token_.empty() ? "" : "?token=" + token_);
   }
   const std::string& token() const { return token_; }
-  std::string root() const { return root_.string(); }
+  std::string root() const { return sandbox_.root().string(); }
   std::string webDir() const { return webDir_.string(); }
   std::string modelPath() const {
     std::lock_guard lock(mutex_);
@@ -385,79 +308,35 @@ class StudioServer::Impl {
   }
 
   // ------------------------------------------------------------------------------------
-  // Paths
-
-  bool inside(const fs::path& canonical) const {
-    auto [r, c] = std::mismatch(root_.begin(), root_.end(), canonical.begin(), canonical.end());
-    return r == root_.end();
-  }
-
-  /// A path from a request, resolved against the root; 403 when it leaves the root.
-  fs::path resolve(const std::string& requested) const {
-    if (requested.empty()) fail(400, "$.path: empty path");
-    if (requested.find('\0') != std::string::npos) fail(400, "$.path: contains a NUL character");
-    fs::path p(requested);
-    if (p.is_relative()) p = root_ / p;
-    std::error_code ec;
-    fs::path canonical = fs::weakly_canonical(p, ec);
-    if (ec) fail(400, fmt::format("{}: {}", requested, ec.message()));
-    if (!inside(canonical) || canonical == root_)
-      fail(403, fmt::format("{}: outside the root folder", requested));
-    return canonical;
-  }
-
-  std::string relative(const fs::path& p) const {
-    return p.lexically_relative(root_).generic_string();
-  }
-
-  /// Makes the parent folder of a path inside the root.
-  void makeParent(const fs::path& p) const {
-    std::error_code ec;
-    fs::create_directories(p.parent_path(), ec);
-    if (ec) fail(500, fmt::format("{}: cannot create the folder: {}", relative(p), ec.message()));
-  }
-
-  // ------------------------------------------------------------------------------------
   // The session
 
-  std::uint64_t revision() const {
-    return base_ + (session_ ? session_->revision() : spectral_ ? spectral_->revision() : 0);
-  }
+  std::uint64_t revision() const { return base_ + (session_ ? session_->revision() : 0); }
 
   Json status() const {
     return {{"revision", revision()},
-            {"undo", session_ ? session_->undoDepth() : spectral_->undoDepth()},
-            {"redo", session_ ? session_->redoDepth() : spectral_->redoDepth()},
+            {"undo", session_->undoDepth()},
+            {"redo", session_->redoDepth()},
             {"dirty", revision() != savedRevision_}};
   }
 
-  /// Edits other than whole-model transforms need a vertex-frame session; spectral and
-  /// cross-section models are shown, moved, turned, scaled, exported and saved, but their
-  /// curves are not edited (yet).
+  /// Edits other than whole-model transforms need a model with editable parts (vertex
+  /// frames); the other types are shown, moved, turned, scaled, exported and saved, but their
+  /// curves and nets are not edited (yet).
   void requireEditable() const {
-    if (!session_)
+    if (!session_->editable())
       fail(409, fmt::format("{} models are view-only in the studio: edit the file, then open it "
                             "again (whole-model transforms work: POST /api/transform)",
-                            spectral_->solved().type));
+                            modelTypeName(session_->model())));
   }
 
   /// The open model, whatever its type (a copy: for the journal).
-  AnyModel currentModel() const {
-    return session_ ? AnyModel(session_->model()) : spectral_->model();
-  }
+  AnyModel currentModel() const { return session_->model(); }
 
-  /// Replaces the session with `model` (solving a spectral one first: it throws
+  /// Replaces the session with `model` (solving one without editable parts first: it throws
   /// ModelError before anything changes); the revision keeps increasing across sessions.
   void replaceSession(AnyModel model, const std::string& source) {
     const std::uint64_t next = opened_ ? revision() + 1 : 0;
-    if (auto* frames = std::get_if<VertexFrameModel>(&model)) {
-      session_ = std::make_unique<ModelSession>(std::move(*frames));
-      spectral_.reset();
-    } else {
-      auto spectral = std::make_unique<SpectralSession>(std::move(model), source);
-      session_.reset();
-      spectral_ = std::move(spectral);
-    }
+    session_ = std::make_unique<ModelSession>(std::move(model), source);
     base_ = next;
     opened_ = true;
   }
@@ -486,96 +365,73 @@ class StudioServer::Impl {
     }
   }
 
-  /// The current spectral model as its file says when it is the model read or saved last
-  /// (so an untransformed model is shown, saved and copied exactly as written), else as
-  /// serializeModel writes it.
-  std::string spectralText() const {
-    std::string text = serializeModel(spectral_->model());
-    return text == fileModel_ ? fileText_ : text;
+  /// The current model as its file says when it is the model read or saved last (so an
+  /// untransformed view-only model is shown, saved and copied exactly as written), else as
+  /// serializeModel writes it. A model with editable parts is always written by
+  /// serializeModel.
+  std::string modelText() const {
+    std::string text = serializeModel(session_->model());
+    return session_->editable() || text != fileModel_ ? text : fileText_;
   }
 
-  /// What the frame view draws for a view-only model: each patch's position curves and its
-  /// spine, as polylines (closed curves sampled at kViewCurveSamples v).
-  Json viewCurves() const {
-    constexpr std::uint32_t kViewCurveSamples = 96, kViewSpineSamples = 65;
-    Json curves = Json::array(), spines = Json::array();
-    if (const SolvedBSplinePde* b = spectral_->bspline()) {
-      // A B-spline model: the control polygon of each piece, its rows and its columns.
-      for (const BSplineSurface& piece : b->pieces) {
-        const ControlNet& net = piece.net();
-        for (int direction = 0; direction < 2; ++direction) {
-          const std::uint32_t lines = direction == 0 ? net.nu : net.nv;
-          const std::uint32_t along = direction == 0 ? net.nv : net.nu;
-          for (std::uint32_t a = 0; a <= lines; ++a) {
-            Json line = Json::array();
-            for (std::uint32_t k = 0; k <= along; ++k) {
-              const Vec3& q = direction == 0 ? net(a, k) : net(k, a);
-              line.push_back({q.x(), q.y(), q.z()});
-            }
-            curves.push_back(std::move(line));
-          }
-        }
-      }
-      return {{"curves", std::move(curves)}, {"spines", std::move(spines)}};
-    }
-    const SolvedSpectral& s = spectral_->solved();
-    for (std::size_t k = 0; k < s.patchCount(); ++k) {
-      const SpectralPatch& p = s.patchAt(k);
-      const auto [u0, u1] = s.range(k);
-      for (const auto& c : p.conditions()) {
-        if (c.derivative != 0 || c.u < std::min(u0, u1) - 1e-12 || c.u > std::max(u0, u1) + 1e-12)
-          continue;
+  /// What the frame view draws for a view-only model (overlay()): polylines as JSON.
+  Json viewCurves() {
+    const ModelOverlay view = overlay(session_->solved());
+    const auto lines = [](const std::vector<std::vector<Vec3>>& polylines) {
+      Json out = Json::array();
+      for (const std::vector<Vec3>& polyline : polylines) {
         Json line = Json::array();
-        for (std::uint32_t j = 0; j < kViewCurveSamples; ++j) {
-          const Vec3 q = p.position(c.u, 2.0 * std::numbers::pi * j / kViewCurveSamples);
-          line.push_back({q.x(), q.y(), q.z()});
-        }
-        curves.push_back(std::move(line));
+        for (const Vec3& q : polyline) line.push_back({q.x(), q.y(), q.z()});
+        out.push_back(std::move(line));
       }
-      Json spine = Json::array();
-      for (std::uint32_t i = 0; i < kViewSpineSamples; ++i) {
-        const Vec3 q = p.spine(u0 + (u1 - u0) * i / (kViewSpineSamples - 1.0));
-        spine.push_back({q.x(), q.y(), q.z()});
-      }
-      spines.push_back(std::move(spine));
-    }
-    return {{"curves", std::move(curves)}, {"spines", std::move(spines)}};
+      return out;
+    };
+    return {{"curves", lines(view.curves)}, {"spines", lines(view.spines)}};
   }
 
-  /// The surface mesh of whatever model is open, for the page: vertex frames through the
-  /// Tessellator (a drag keeps the topology, so only positions and normals are rewritten).
+  /// The surface mesh of whatever model is open, for the page, through the ModelTessellator
+  /// (a drag keeps the topology, so only positions and normals are rewritten).
   const Mesh& meshOf(std::uint32_t resolution, const SolveOptions& options, double& solveMs,
                      double& tessMs, double& gap) {
-    if (spectral_) {
-      auto t0 = Clock::now();
-      viewMesh_ = spectralMesh(resolution);
-      tessMs = msSince(t0);
-      solveMs = 0.0;  // solved when opened or transformed
-      gap = 0.0;
-      if (spectral_->solved().chain)
-        for (const JointGap& g : measureJointGaps(*spectral_->solved().chain))
-          gap = std::max(gap, g.c0);
-      return viewMesh_;
-    }
     auto t0 = Clock::now();
-    const VertexFrameSurface& surface = session_->surface(options);
+    const SolvedModel& solved = session_->solved(options);  // view-only: solved when changed
     solveMs = msSince(t0);
     t0 = Clock::now();
-    const Mesh& mesh = tessellator_.tessellate(surface, {resolution});
+    const Mesh& mesh = tessellator_.tessellate(solved, {resolution});
     tessMs = msSince(t0);
-    gap = measureC0Gap(surface).maxGap;
+    gap = largestC0Gap(solved);
     return mesh;
   }
 
-  /// The mesh of the open spectral, cross-section or bspline-pde model.
-  Mesh spectralMesh(std::uint32_t resolution) const {
-    if (const SolvedBSplinePde* b = spectral_->bspline()) return tessellate(*b, resolution);
-    return tessellate(spectral_->solved(), resolution);
+  /// A mesh for a file (export), leaving the page's tessellation cache alone.
+  Mesh exportMesh(std::uint32_t resolution) { return tessellate(session_->solved(), {resolution}); }
+
+  /// The CAD format a path names (.step .stp .iges .igs), if any.
+  static std::optional<CadFormat> cadFormatOf(const fs::path& path) {
+    try {
+      return cadFormatFromPath(path.string());
+    } catch (const CadError&) {
+      return std::nullopt;
+    }
   }
 
-  /// A mesh for a file (export), leaving the page's tessellation cache alone.
-  Mesh exportMesh(std::uint32_t resolution) {
-    return spectral_ ? spectralMesh(resolution) : tessellate(session_->surface(), {resolution});
+  /// Writes the open model as B-spline faces to a STEP or IGES file, as `pdesurf export`
+  /// does with its default tolerance (a face that misses it is written as its finest fit;
+  /// the answer counts such faces); what it wrote, for the page.
+  Json exportCad(const fs::path& path, CadFormat format) {
+    NurbsExportOptions options;
+    options.keepBest = true;
+    const NurbsModel nurbs = toNurbs(session_->solved(), options);
+    CadExportReport report;
+    try {
+      report = writeCad(nurbs, path.string(), format);
+    } catch (const CadError& e) {
+      fail(500, e.what());
+    }
+    return {
+        {"path", sandbox_.relative(path)},      {"faces", nurbs.faces.size()},
+        {"exactFaces", nurbs.exactCount()},     {"facesOverTolerance", nurbs.overToleranceCount()},
+        {"maxDeviation", nurbs.maxDeviation()}, {"shells", report.shells}};
   }
 
   /// The journal: the current model beside its file after every change. A pending
@@ -587,12 +443,15 @@ class StudioServer::Impl {
 
   void saveTo(const fs::path& path) {
     try {
-      // An untransformed spectral model is saved as its file was (save as: a copy).
+      // An untransformed view-only model is saved as its file was (save as: a copy).
+      // Fields the editor does not hold ("description", ...) are kept from a vertex-frame
+      // model's file (keepUnknownFields knows that type's fields; the other types are saved
+      // as their files were unless transformed).
       const std::string text =
-          session_ ? serializeVertexFrameModel(session_->model()) : spectralText();
+          session_->frames() ? keepUnknownFields(modelText(), fileText_) : modelText();
       writeFileAtomically(path.string(), text);
       fileText_ = text;
-      fileModel_ = session_ ? text : serializeModel(spectral_->model());
+      fileModel_ = serializeModel(session_->model());
     } catch (const std::exception& e) {
       fail(500, e.what());
     }
@@ -614,8 +473,8 @@ class StudioServer::Impl {
       else if (s != "global")
         fail(400, fmt::format("solver: expected \"global\" or \"local\", found \"{}\"", s));
     }
-    if (req.has_param("seed") && session_) {
-      const auto frames = static_cast<std::uint32_t>(session_->model().frames.size());
+    if (req.has_param("seed") && session_->editable()) {
+      const auto frames = static_cast<std::uint32_t>(session_->frames()->frames.size());
       o.seedFrame = parseUint(req.get_param_value("seed"), 0, frames - 1, "seed");
     }
     return o;
@@ -718,21 +577,17 @@ class StudioServer::Impl {
 
     server_.Get("/api/model", guarded([this](const httplib::Request&, httplib::Response& res) {
                   Json out = status();
-                  out["path"] = relative(path_);
+                  out["path"] = sandbox_.relative(path_);
                   out["recovery"] = recovery_;
-                  out["editable"] = session_ != nullptr;
-                  if (session_) {
-                    out["model"] = Json::parse(serializeVertexFrameModel(session_->model()));
-                  } else {
-                    out["model"] = Json::parse(spectralText());
-                    out["view"] = viewCurves();
-                  }
+                  out["editable"] = session_->editable();
+                  out["model"] = Json::parse(modelText());
+                  if (!session_->editable()) out["view"] = viewCurves();
                   sendJson(res, out);
                 }));
 
     server_.Post("/api/edit", guarded([this](const httplib::Request& req, httplib::Response& res) {
                    requireEditable();
-                   const GroupedEdit edit = parseEdit(req.body, session_->model());
+                   const GroupedEdit edit = parseEdit(req.body, *session_->frames());
                    session_->apply(edit.edit, edit.group);
                    autosave();
                    sendJson(res, status());
@@ -741,13 +596,7 @@ class StudioServer::Impl {
     // Moves, turns or scales the whole model, of any type: one undo step.
     server_.Post("/api/transform",
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
-                   const AffineMap map = parseTransform(req.body);
-                   if (session_) {
-                     checkTransform(session_->model(), map);
-                     session_->apply(TransformModel{map});
-                   } else {
-                     spectral_->transform(map);
-                   }
+                   session_->transform(parseTransform(req.body));
                    autosave();
                    sendJson(res, status());
                  }));
@@ -759,15 +608,13 @@ class StudioServer::Impl {
                  }));
 
     server_.Post("/api/undo", guarded([this](const httplib::Request&, httplib::Response& res) {
-                   if (!(session_ ? session_->undo() : spectral_->undo()))
-                     fail(409, "nothing to undo");
+                   if (!session_->undo()) fail(409, "nothing to undo");
                    autosave();
                    sendJson(res, status());
                  }));
 
     server_.Post("/api/redo", guarded([this](const httplib::Request&, httplib::Response& res) {
-                   if (!(session_ ? session_->redo() : spectral_->redo()))
-                     fail(409, "nothing to redo");
+                   if (!session_->redo()) fail(409, "nothing to redo");
                    autosave();
                    sendJson(res, status());
                  }));
@@ -787,19 +634,15 @@ class StudioServer::Impl {
                   const SolveOptions options = solveOptions(req);
                   double solveMs = 0, tessMs = 0, gap = 0;
                   const Mesh& mesh = meshOf(resolution, options, solveMs, tessMs, gap);
-                  // Same triangles: for vertex frames the Tessellator's layout says so
-                  // without comparing the index buffers (the drag's hot path).
-                  const std::uint64_t layout = spectral_ ? 0 : tessellator_.layoutVersion();
-                  const bool sameTriangles =
-                      spectral_ ? sameTopology(sent_, mesh) : layout == sentLayout_ && !sentView_;
-                  const bool delta = base != 0 && base == sentId_ && sameTriangles;
-                  if (delta)
-                    sendMeshDelta(res, sent_, mesh, revision(), resolution);
-                  else
-                    sendMesh(res, mesh, revision(), resolution);
+                  // Same triangles: the tessellator's layout says so (for vertex frames
+                  // without comparing the index buffers: the drag's hot path).
+                  const std::uint64_t layout = tessellator_.layoutVersion();
+                  const bool delta = base != 0 && base == sentId_ && layout == sentLayout_;
+                  res.set_content(delta ? encodeMeshDelta(sent_, mesh, revision(), resolution)
+                                        : encodeMesh(mesh, revision(), resolution),
+                                  "application/octet-stream");
                   sent_ = mesh;  // what the client now has (copies reuse sent_'s buffers)
                   sentLayout_ = layout;
-                  sentView_ = spectral_ != nullptr;
                   sentId_ = ++meshCounter_;
                   if (delta) res.set_header("X-Mesh-Base", std::to_string(base));
                   res.set_header("X-Mesh-Id", std::to_string(sentId_));
@@ -808,28 +651,42 @@ class StudioServer::Impl {
                   res.set_header("X-C0-Gap", fmt::format("{}", gap));
                 }));
 
+    // The true boundary curves of every patch (the surface view's frame overlay): float32
+    // [patch][side v=0, u=1, v=1, u=0][sample][xyz], `samples` points per side.
+    server_.Get(
+        "/api/boundaries", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          requireEditable();
+          std::uint32_t samples = kDefaultMeshResolution + 1;
+          if (req.has_param("samples"))
+            samples = parseUint(req.get_param_value("samples"), kMinResolution, kMaxMeshResolution,
+                                "samples");
+          res.set_content(boundaryCurves(*session_->solved(solveOptions(req)).frames(), samples),
+                          "application/octet-stream");
+          res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+        }));
+
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
                   std::vector<std::string> files;
                   std::error_code ec;
                   fs::recursive_directory_iterator it(
-                      root_, fs::directory_options::skip_permission_denied, ec);
+                      sandbox_.root(), fs::directory_options::skip_permission_denied, ec);
                   for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
                     if (it->path().extension() == ".json" && it->is_regular_file(ec))
-                      files.push_back(relative(it->path()));
+                      files.push_back(sandbox_.relative(it->path()));
                   std::sort(files.begin(), files.end());
                   sendJson(res, {{"files", files}});
                 }));
 
     server_.Post("/api/open", guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const std::string requested = stringMember(bodyObject(req), "path");
-                   const fs::path path = resolve(requested);
+                   const fs::path path = sandbox_.resolve(requested);
                    std::error_code ec;
                    if (!fs::exists(path, ec)) fail(404, fmt::format("{}: no such file", requested));
                    if (!fs::is_regular_file(path, ec))
                      fail(400, fmt::format("{}: not a file", requested));
-                   openModel(path, relative(path));
+                   openModel(path, sandbox_.relative(path));
                    Json out = status();
-                   out["path"] = relative(path_);
+                   out["path"] = sandbox_.relative(path_);
                    out["recovery"] = recovery_;
                    sendJson(res, out);
                  }));
@@ -837,23 +694,23 @@ class StudioServer::Impl {
     server_.Post("/api/save", guarded([this](const httplib::Request&, httplib::Response& res) {
                    saveTo(path_);
                    Json out = status();
-                   out["path"] = relative(path_);
+                   out["path"] = sandbox_.relative(path_);
                    sendJson(res, out);
                  }));
 
     server_.Post("/api/save-as",
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const std::string requested = stringMember(bodyObject(req), "path");
-                   const fs::path path = resolve(requested);
+                   const fs::path path = sandbox_.resolve(requested);
                    if (path.extension() != ".json")
                      fail(400, fmt::format("{}: a model file ends in .json", requested));
                    std::error_code ec;
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
-                   makeParent(path);
+                   sandbox_.makeParent(path);
                    saveTo(path);
                    Json out = status();
-                   out["path"] = relative(path_);
+                   out["path"] = sandbox_.relative(path_);
                    sendJson(res, out);
                  }));
 
@@ -861,12 +718,13 @@ class StudioServer::Impl {
                  guarded([this](const httplib::Request& req, httplib::Response& res) {
                    const Json body = bodyObject(req);
                    const std::string requested = stringMember(body, "path");
-                   const fs::path path = resolve(requested);
+                   const fs::path path = sandbox_.resolve(requested);
+                   const std::optional<CadFormat> cad = cadFormatOf(path);
                    try {
-                     meshFormatFromPath(path.string());
+                     if (!cad) meshFormatFromPath(path.string());
                    } catch (const MeshIoError&) {
-                     fail(400, fmt::format("{}: unknown mesh format (known: .obj .ply .stl .glb "
-                                           ".off)",
+                     fail(400, fmt::format("{}: unknown format (known: .obj .ply .stl .glb .off "
+                                           ".step .stp .iges .igs)",
                                            requested));
                    }
                    std::uint32_t resolution = kDefaultExportResolution;
@@ -880,14 +738,15 @@ class StudioServer::Impl {
                    std::error_code ec;
                    if (fs::is_directory(path, ec))
                      fail(400, fmt::format("{}: is a folder", requested));
-                   makeParent(path);
+                   sandbox_.makeParent(path);
+                   if (cad) return sendJson(res, exportCad(path, *cad));
                    const Mesh mesh = exportMesh(resolution);
                    try {
                      writeMesh(mesh, path.string());
                    } catch (const MeshIoError& e) {
                      fail(500, e.what());
                    }
-                   sendJson(res, {{"path", relative(path)},
+                   sendJson(res, {{"path", sandbox_.relative(path)},
                                   {"vertices", mesh.vertexCount()},
                                   {"triangles", mesh.triangleCount()}});
                  }));
@@ -895,8 +754,8 @@ class StudioServer::Impl {
     server_.Post("/api/recover", guarded([this](const httplib::Request&, httplib::Response& res) {
                    if (!recovery_) fail(409, "no autosave to recover");
                    const fs::path journal = autosavePath(path_);
-                   replaceSession(parseModel(readFile(journal), relative(journal)),
-                                  relative(journal));
+                   replaceSession(parseModel(readFile(journal), sandbox_.relative(journal)),
+                                  sandbox_.relative(journal));
                    recovery_ = false;  // the journal now matches the session
                    sendJson(res, status());
                  }));
@@ -912,95 +771,28 @@ class StudioServer::Impl {
                  }));
   }
 
-  static void sendMesh(httplib::Response& res, const Mesh& mesh, std::uint64_t revision,
-                       std::uint32_t resolution) {
-    static_assert(std::endian::native == std::endian::little,
-                  "the mesh stream is little-endian; add byte swapping for this machine");
-    const std::size_t v = mesh.vertexCount(), t = mesh.triangleCount();
-    std::string body(16 + 4 * (6 * v + 3 * t), '\0');
-    char* out = body.data();
-    const std::uint32_t header[4] = {static_cast<std::uint32_t>(v), static_cast<std::uint32_t>(t),
-                                     static_cast<std::uint32_t>(revision & 0xffffffffu),
-                                     resolution};
-    std::memcpy(out, header, sizeof header);
-    out += sizeof header;
-    std::memcpy(out, mesh.positions.data(), 12 * v);
-    out += 12 * v;
-    if (mesh.normals.size() == 3 * v) std::memcpy(out, mesh.normals.data(), 12 * v);
-    out += 12 * v;
-    std::memcpy(out, mesh.indices.data(), 12 * t);
-    res.set_content(std::move(body), "application/octet-stream");
-  }
-
-  /// Same vertex count and triangles: a delta of positions and normals can update it.
-  static bool sameTopology(const Mesh& a, const Mesh& b) {
-    return a.positions.size() == b.positions.size() && a.normals.size() == b.normals.size() &&
-           a.indices == b.indices;
-  }
-
-  /// The vertices whose position or normal differ between `from` and `to` (same topology),
-  /// as runs [start, start + count); runs closer than kDeltaRunGap vertices are merged (a
-  /// few unchanged vertices cost less than a run).
-  static std::vector<std::uint32_t> changedRuns(const Mesh& from, const Mesh& to) {
-    constexpr std::size_t kDeltaRunGap = 8;
-    const std::size_t v = to.vertexCount();
-    const bool normals = to.normals.size() == 3 * v;
-    const auto differs = [&](std::size_t i) {
-      return std::memcmp(&from.positions[3 * i], &to.positions[3 * i], 12) != 0 ||
-             (normals && std::memcmp(&from.normals[3 * i], &to.normals[3 * i], 12) != 0);
-    };
-    std::vector<std::uint32_t> runs;  // start, count, start, count, ...
-    for (std::size_t i = 0; i < v; ++i) {
-      if (!differs(i)) continue;
-      std::size_t end = i + 1;
-      for (std::size_t gap = 0; end < v && gap <= kDeltaRunGap; ++end)
-        gap = differs(end) ? 0 : gap + 1;
-      while (end > i + 1 && !differs(end - 1)) --end;
-      if (!runs.empty() && i - (runs[runs.size() - 2] + runs.back()) <= kDeltaRunGap) {
-        runs.back() = static_cast<std::uint32_t>(end - runs[runs.size() - 2]);
-      } else {
-        runs.push_back(static_cast<std::uint32_t>(i));
-        runs.push_back(static_cast<std::uint32_t>(end - i));
-      }
-      i = end - 1;
-    }
-    return runs;
-  }
-
-  /// The delta of `to` against `from` (the client's mesh): a header of five uint32 (V, T,
-  /// revision, resolution, run count R), the runs (start, count) as uint32[2R], then the
-  /// positions float32[3C] and normals float32[3C] of the C changed vertices, in run order.
-  static void sendMeshDelta(httplib::Response& res, const Mesh& from, const Mesh& to,
-                            std::uint64_t revision, std::uint32_t resolution) {
-    const std::vector<std::uint32_t> runs = changedRuns(from, to);
-    std::size_t changed = 0;
-    for (std::size_t r = 1; r < runs.size(); r += 2) changed += runs[r];
-    std::string body(20 + 4 * runs.size() + 24 * changed, '\0');
-    char* out = body.data();
-    const std::uint32_t header[5] = {static_cast<std::uint32_t>(to.vertexCount()),
-                                     static_cast<std::uint32_t>(to.triangleCount()),
-                                     static_cast<std::uint32_t>(revision & 0xffffffffu), resolution,
-                                     static_cast<std::uint32_t>(runs.size() / 2)};
-    std::memcpy(out, header, sizeof header);
-    out += sizeof header;
-    std::memcpy(out, runs.data(), 4 * runs.size());
-    out += 4 * runs.size();
-    const bool normals = to.normals.size() == to.positions.size();
-    for (const auto* buffer : {&to.positions, &to.normals})
-      for (std::size_t r = 0; r < runs.size(); r += 2) {
-        const std::size_t bytes = 12 * std::size_t{runs[r + 1]};
-        if (buffer == &to.positions || normals)
-          std::memcpy(out, buffer->data() + 3 * std::size_t{runs[r]}, bytes);
-        out += bytes;
-      }
-    res.set_content(std::move(body), "application/octet-stream");
+  /// The four sides of each patch of `surface` (its parameter square's edges, in the
+  /// order v = 0, u = 1, v = 1, u = 0), `samples` points each, as little-endian float32.
+  static std::string boundaryCurves(const VertexFrameSurface& surface, std::uint32_t samples) {
+    std::vector<float> out;
+    out.reserve(std::size_t{12} * samples * surface.patches.size());
+    for (const VertexFramePatch& patch : surface.patches)
+      for (int side = 0; side < 4; ++side)
+        for (std::uint32_t i = 0; i < samples; ++i) {
+          const double t = static_cast<double>(i) / (samples - 1);
+          const double u = side == 0 ? t : side == 1 ? 1.0 : side == 2 ? 1.0 - t : 0.0;
+          const double v = side == 0 ? 0.0 : side == 1 ? t : side == 2 ? 1.0 : 1.0 - t;
+          const Vec3 p = patch.position(u, v);
+          for (int c = 0; c < 3; ++c) out.push_back(static_cast<float>(p[c]));
+        }
+    return std::string(reinterpret_cast<const char*>(out.data()), 4 * out.size());
   }
 
   StudioOptions options_;
   const std::string token_;           // empty: none required (--no-token)
   std::vector<std::string> hosts_;    // the Host values naming this server, lower case
   std::vector<std::string> origins_;  // "http://" + each of hosts_
-  fs::path root_;
+  RootSandbox sandbox_;               // every path of a request resolves inside its root
   fs::path webDir_;
   httplib::Server server_;
   std::thread thread_;
@@ -1014,15 +806,11 @@ class StudioServer::Impl {
   bool recovery_ = false;
   // The last mesh sent (GET /api/mesh) and its id; ids are never reused while the server
   // runs, so a client's `base` names exactly one mesh, across opened models too.
-  Tessellator tessellator_;       // the page's vertex-frame meshes
-  Mesh viewMesh_;                 // the page's mesh of a view-only model
+  ModelTessellator tessellator_;  // the page's meshes
   Mesh sent_;                     // the last mesh sent (the base of a delta)
-  std::uint64_t sentLayout_ = 0;  // the Tessellator layout of sent_ (vertex frames)
-  bool sentView_ = false;         // sent_ is a view-only model's mesh
-  /// Set when a spectral or cross-section model is open (then session_ is null).
-  std::unique_ptr<SpectralSession> spectral_;
-  std::string fileText_;   ///< the model's file as read or saved last
-  std::string fileModel_;  ///< serializeModel of that file's model
+  std::uint64_t sentLayout_ = 0;  // the tessellator's layout of sent_
+  std::string fileText_;          ///< the model's file as read or saved last
+  std::string fileModel_;         ///< serializeModel of that file's model
   bool opened_ = false;
   Journal journal_;
   std::uint64_t sentId_ = 0;

@@ -6,7 +6,12 @@
 // requestAnimationFrame callback after the surface mesh of that edit was applied.
 //
 // Usage: node bench/studio/latency.mjs [--cli build/pdesurf] [--steps 200] [--stream 300] [--json out.json]
+//          [--model examples/mug.json] [--resolution 16] [--preview 1] [--releases 5]
 //   (scripts/run_bench_studio runs it with --steps 100 --stream 0; later options win)
+//   --model: a model file instead of the generated sheet (the vertex dragged is the one
+//   nearest the frame view's centre on screen); --preview 0: the page without its adaptive
+//   preview (?preview=0), the baseline; --releases N: N more drags, each timed from the
+//   button's release to the first frame drawn at full resolution.
 //
 // Two runs: "step" moves the pointer once, waits until that edit's mesh is on screen, then
 // idles 50 ms (one edit at a time: the latency of one edit); "stream" moves the pointer
@@ -43,6 +48,9 @@ const STREAM = Number(opt('stream', 300));
 const RESOLUTION = opt('resolution', '16');
 const JSON_OUT = opt('json', '');
 const ROWS = Number(opt('rows', 25)), COLS = Number(opt('cols', 40));
+const MODEL = opt('model', '');
+const PREVIEW = opt('preview', '1') !== '0';
+const RELEASES = Number(opt('releases', 5));
 
 // Same launch as e2e/playwright.config.ts.
 const LAUNCH = {
@@ -127,11 +135,14 @@ function watchFrames() {
   }, { capture: true });
   const gl = document.querySelector('[data-testid="surface-view"] canvas').getContext('webgl2');
   T.finish = false;
-  T.lastMesh = window.__studio.state().mesh;
+  canvas.addEventListener('pointerup', () => (T.upAt = performance.now()), { capture: true });
+  const key = () => { const s = window.__studio.state(); return `${s.mesh}/${s.resolution}`; };
+  T.lastMesh = key();
   const loop = (ts) => {
-    const mesh = window.__studio.state().mesh;
-    if (mesh !== T.lastMesh) {
-      const f = { raf: performance.now(), ts, revision: mesh };
+    const k = key();
+    if (k !== T.lastMesh) {
+      const st = window.__studio.state();
+      const f = { raf: performance.now(), ts, revision: st.mesh, resolution: st.resolution };
       // Step mode: also the time the GPU (SwiftShader) has drawn it: reading a pixel
       // waits for the draw (gl.finish() does not, in Chromium's GPU process).
       if (T.finish && gl) {
@@ -139,7 +150,7 @@ function watchFrames() {
         f.drawn = performance.now();
       }
       T.frames.push(f);
-      T.lastMesh = mesh;
+      T.lastMesh = k;
     }
     requestAnimationFrame(loop);
   };
@@ -156,11 +167,14 @@ const fmt = (s) => `p50 ${s.p50.toFixed(1).padStart(6)}  p95 ${s.p95.toFixed(1).
 
 async function main() {
   const root = mkdtempSync(path.join(tmpdir(), 'pdesurf-bench-studio-'));
-  const model = path.join(root, 'latency.json');
-  execFileSync('python3', [path.join(HERE, 'make_model.py'), model, String(ROWS), String(COLS)], { stdio: 'ignore' });
-  const { child, url, origin, token } = await startStudio(model);
+  const model = path.join(root, MODEL ? path.basename(MODEL) : 'latency.json');
+  if (MODEL) writeFileSync(model, readFileSync(MODEL));
+  else execFileSync('python3', [path.join(HERE, 'make_model.py'), model, String(ROWS), String(COLS)], { stdio: 'ignore' });
+  const started = await startStudio(model);
+  const { child, origin, token } = started;
+  const url = PREVIEW ? started.url : `${started.url}&preview=0`;
   const browser = await chromium.launch(LAUNCH);
-  const results = { model: { rows: ROWS, cols: COLS, frames: ROWS * COLS }, resolution: Number(RESOLUTION) };
+  const results = { model: MODEL ? { file: MODEL } : { rows: ROWS, cols: COLS, frames: ROWS * COLS }, resolution: Number(RESOLUTION), preview: PREVIEW };
   try {
     const page = await browser.newPage({ viewport: { width: 1440, height: 860 } });
     const errors = [];
@@ -196,11 +210,26 @@ async function main() {
     void vertex;
     const state = await (await fetch(`${origin}/api/model`, { headers: { 'X-Pdesurf-Token': token } })).json();
     const vs = state.model.vertices;
+    results.model.frames = state.model.frames.length;
     const cx = (COLS * 0.5), cy = (ROWS * 0.5);
     let best = 0;
-    vs.forEach((v, k) => {
-      if (Math.hypot(v[0] - cx, v[1] - cy) < Math.hypot(vs[best][0] - cx, vs[best][1] - cy)) best = k;
-    });
+    if (MODEL) {
+      // The handle nearest the frame view's centre on screen.
+      best = await page.evaluate((n) => {
+        const r = document.querySelector('[data-testid="frame-view"] canvas').getBoundingClientRect();
+        let k = 0, d = Infinity;
+        for (let i = 0; i < n; ++i) {
+          const q = window.__studio.vertexScreen(i);
+          const di = Math.hypot(q.x - (r.left + r.width / 2), q.y - (r.top + r.height / 2));
+          if (di < d) (d = di), (k = i);
+        }
+        return k;
+      }, vs.length);
+    } else {
+      vs.forEach((v, k) => {
+        if (Math.hypot(v[0] - cx, v[1] - cy) < Math.hypot(vs[best][0] - cx, vs[best][1] - cy)) best = k;
+      });
+    }
     const p = await page.evaluate((k) => window.__studio.vertexScreen(k), best);
     await page.mouse.move(p.x, p.y);
     await page.mouse.down();
@@ -289,6 +318,34 @@ async function main() {
     };
     }
     await page.mouse.up();
+    // Releases: a short drag, then the button's release to the first frame drawn at the
+    // full resolution (the preview's end).
+    const full = Number(RESOLUTION);
+    const releases = [];
+    for (let k = 0; k < RELEASES; ++k) {
+      await page.evaluate(() => window.__studio.idle());
+      await upToDate();
+      await page.waitForFunction((r) => window.__studio.state().resolution === r, full, { timeout: 60000 });
+      const h = await page.evaluate((v) => window.__studio.vertexScreen(v), best);
+      await page.mouse.move(h.x, h.y);
+      await page.mouse.down();
+      for (let j = 1; j <= 3; ++j) { await page.mouse.move(h.x + 3 * j, h.y - 2 * j); await upToDate(); }
+      await page.evaluate(() => Object.assign(window.__bench, { finish: true, frames: [], upAt: undefined }));
+      // Without a preview the surface is at full resolution already: nothing to wait for.
+      const previewed = await page.evaluate((r) => window.__studio.state().resolution !== r, full);
+      await page.mouse.up();
+      const ms = !previewed ? 0 : await page.evaluate((r) => new Promise((resolve) => {
+        const T = window.__bench;
+        const check = () => {
+          const f = T.upAt !== undefined && T.frames.find((x) => x.raf >= T.upAt && x.resolution === r);
+          if (f) resolve(f.drawn - T.upAt);
+          else requestAnimationFrame(check);
+        };
+        check();
+      }), full);
+      releases.push(ms);
+    }
+    if (RELEASES > 0) results.release = stats(releases);
     if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
   } finally {
     await browser.close();
@@ -297,8 +354,8 @@ async function main() {
   }
 
   const st = results.step;
-  console.log(`Studio edit-to-new-frame latency: ${results.model.frames} frames (${ROWS}x${COLS}), Res ${RESOLUTION}, ` +
-    `mesh ${(st.meshBytes / 1e6).toFixed(1)} MB, chromium (SwiftShader), ${cpus().length} cores`);
+  console.log(`Studio edit-to-new-frame latency: ${MODEL || `${ROWS}x${COLS} sheet`}, ${results.model.frames} frames, Res ${RESOLUTION}, ` +
+    `preview ${PREVIEW ? 'on' : 'off'}, mesh ${(st.meshBytes / 1e6).toFixed(2)} MB, chromium (SwiftShader), ${cpus().length} cores`);
   console.log(`\nOne edit at a time (${st.timed} of ${st.steps} steps timed):`);
   console.log(`  pointer event -> first rAF with the new mesh   ${fmt(st.total)}`);
   console.log(`  (from the event's timeStamp)                   ${fmt(st.fromStamp)}`);
@@ -318,6 +375,7 @@ async function main() {
   if (sm) console.log(`\n60 Hz drag (${sm.pointerEvents} pointer events in ${sm.seconds.toFixed(1)} s, ${sm.edits} edits, ` +
     `${sm.newFrames} new surface frames = ${sm.meshesPerSecond.toFixed(1)}/s):`);
   if (sm) console.log(`  pointer event -> first rAF showing it          ${fmt(sm.latency)}`);
+  if (results.release) console.log(`\nRelease -> first frame drawn at Res ${RESOLUTION} (${results.release.n} drags): ${fmt(results.release)}`);
   console.log(`\nIdle page: one frame every ${results.idleFrame.p50.toFixed(1)} ms (p50 rAF interval, nothing changing)`);
   const met = st.total.p95 <= 16;
   console.log(`\nTarget p95 <= 16 ms (one edit at a time): ${met ? 'MET' : 'NOT MET'} (p95 ${st.total.p95.toFixed(1)} ms)`);

@@ -1,31 +1,33 @@
-// Model files: JSON documents with a "type" (docs/model-format.md).
+// Model files: JSON documents with a "type" (docs/model-format.md), read into the model
+// layer's AnyModel and written back; the vertex-frame type's own reader and writer.
+// spectral_io.hpp and bspline_pde_io.hpp write the other types.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include "pdesurf/model.hpp"
+#include "pdesurf/model_error.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {
+
+/// Parses and validates a model of any type (by its "type"); `source` names it in errors.
+AnyModel parseModel(std::string_view text, const std::string& source);
+/// Reads and parses a model file of any type (errors name the path).
+AnyModel loadModel(const std::string& path);
+/// Reads, parses and solves a model file (errors name the path).
+SolvedModel loadAndSolve(const std::string& path, const SolveOptions& options = {});
+
+/// The model as JSON text that parseModel reads back to the same model (numbers written
+/// shortest round-trip).
+std::string serializeModel(const AnyModel& model);
 
 /// A force has no particular solution when a1/Lu² + a2/Lv² vanishes; it counts as vanishing
 /// when it is below this fraction of |a1|/Lu² + |a2|/Lv². Rounding in Lu = u1 - u0 and the
 /// divisions leaves a few 1e-16 of that sum where the exact value is 0; a real value this
 /// small would displace the surface by 1e12 × f0, which no model means.
 constexpr double kForceSolvabilityTolerance = 1e-12;
-
-/// A model file is malformed or invalid. what() reads "FILE: $.json.path: what is wrong".
-class ModelError : public std::runtime_error {
- public:
-  ModelError(const std::string& file, const std::string& jsonPath, const std::string& problem);
-  const std::string& file() const { return file_; }
-  const std::string& jsonPath() const { return jsonPath_; }
-  const std::string& problem() const { return problem_; }
-
- private:
-  std::string file_, jsonPath_, problem_;
-};
 
 /// Parses and validates a `"type": "vertex-frames"` model; `source` names it in errors.
 /// Everything a solver assumes is checked here: counts, types, finite numbers, indices,
@@ -38,5 +40,12 @@ VertexFrameModel loadVertexFrameModel(const std::string& path);
 /// The model as JSON text that parseVertexFrameModel reads back to the same model
 /// (numbers written shortest round-trip; defaults omitted).
 std::string serializeVertexFrameModel(const VertexFrameModel& model);
+
+/// `written` (serializeVertexFrameModel's text) with the fields of `original` (the file it
+/// was read from) that the model does not hold: top-level fields other than type, name,
+/// vertices, frames and forces ("description", a tool's own data), and, when both have as
+/// many frames, each frame's fields other than vertices, a1, a2 and forces; in the
+/// original's key order. `written` unchanged when `original` is not a JSON object.
+std::string keepUnknownFields(const std::string& written, std::string_view original);
 
 }  // namespace pdesurf

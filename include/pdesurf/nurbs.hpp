@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "pdesurf/bspline_pde.hpp"
-#include "pdesurf/spectral_io.hpp"
+#include "pdesurf/spectral_model.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {
@@ -141,14 +141,21 @@ struct NurbsExportOptions {
   /// Absolute tolerance of approximated faces; ≤ 0: kDefaultRelativeExportTolerance × the
   /// model's bounding-box diagonal.
   double tolerance = 0.0;
+  /// Refinement cap of approximated faces, spans per direction (ApproximationOptions).
+  std::uint32_t maxSpans = 512;
+  /// A face whose fit misses the tolerance at maxSpans: false throws NurbsToleranceError;
+  /// true keeps the finest fit tried, its measured deviation in NurbsFace::deviation and
+  /// NurbsFace::withinTolerance false (the CLI does this under its default tolerance).
+  bool keepBest = false;
 };
 
 /// One patch as one face.
 struct NurbsFace {
   NurbsSurface surface;
-  std::uint32_t patch = 0;  ///< the patch (frame, chain patch) it comes from
-  bool exact = false;       ///< polynomial patch: no approximation
-  double deviation = 0.0;   ///< measured max |face - patch| (rounding only when exact)
+  std::uint32_t patch = 0;      ///< the patch (frame, chain patch) it comes from
+  bool exact = false;           ///< polynomial patch: no approximation
+  double deviation = 0.0;       ///< measured max |face - patch| (rounding only when exact)
+  bool withinTolerance = true;  ///< false: the finest fit tried missed it (keepBest)
 };
 
 struct NurbsModel {
@@ -157,6 +164,7 @@ struct NurbsModel {
   double tolerance = 0.0;  ///< the absolute tolerance used for approximations
   double maxDeviation() const;
   std::size_t exactCount() const;
+  std::size_t overToleranceCount() const;  ///< faces kept with withinTolerance false
 };
 
 /// An approximation that did not reach the tolerance within ApproximationOptions::maxSpans.

@@ -13,7 +13,7 @@
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/sections.hpp"
 #include "pdesurf/spectral.hpp"
-#include "pdesurf/spectral_io.hpp"
+#include "pdesurf/spectral_model.hpp"
 
 namespace pdesurf {
 

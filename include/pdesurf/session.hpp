@@ -1,7 +1,6 @@
-// Editing sessions: on a vertex-frame model, validated edits, undo and redo (a drag is one
-// step), and a solved surface cached per revision; on a spectral or cross-section model,
-// whole-model transforms with undo and redo. The studio server is a thin HTTP layer over
-// this; nothing here knows about HTTP or files.
+// Editing sessions on models of any type (ModelSession): edits, whole-model transforms, undo
+// and redo, the solved model cached per revision. The studio server is a thin HTTP layer over
+// this; nothing here knows about HTTP or files (edit_io.hpp parses and checks the edits).
 #pragma once
 
 #include <cstdint>
@@ -12,9 +11,8 @@
 #include <variant>
 #include <vector>
 
-#include "pdesurf/spectral_io.hpp"
+#include "pdesurf/model.hpp"
 #include "pdesurf/transform.hpp"
-#include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {
 
@@ -54,29 +52,6 @@ struct GroupedEdit {
   Edit edit;
   std::string group;
 };
-
-/// Parses and validates an edit against `model`: JSON such as
-///   {"op": "move-vertex", "vertex": 3, "position": [0, 1, 2], "group": "drag-7"}
-///   {"op": "set-parameters", "frames": [0, 2], "a1": [1, 1, 1], "a2": [2, 2, 2]}
-///   {"op": "set-forces", "frame": 1, "forces": [{"f0": [0, 0, 1], "region": [0, 1, 0, 1]}]}
-///   {"op": "set-shared-forces", "forces": [{"f0": [0, 0, -1], "frames": [0, 1]}]}
-/// Everything the model parser would check of the result is checked (indices in range,
-/// finite numbers, regions, forces that have a solution with the frame's a1 and a2).
-/// Throws ModelError with source "edit" and the JSON path of the problem.
-GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model);
-
-/// Parses a whole-model transform as the studio sends it (POST /api/transform):
-///   {"translate": [x, y, z],
-///    "rotate": {"axis": [x, y, z], "degrees": d, "center": [x, y, z]},
-///    "scale": s, "center": [x, y, z]}
-/// All parts optional but at least one; applied in the order scale (about "center", s > 0),
-/// rotate (about its own "center", else the top-level one), translate. "center" defaults to
-/// the origin. Throws ModelError with source "transform" and the JSON path of the problem.
-AffineMap parseTransform(std::string_view json);
-
-/// Throws ModelError (source "transform") when transformModel(model, map) would be invalid:
-/// a force turned onto a component whose a1/Lu² + a2/Lv² is 0 (per-component a1/a2).
-void checkTransform(const VertexFrameModel& model, const AffineMap& map);
 
 /// Snapshots of a value for undo and redo. Consecutive changes of one non-empty group
 /// undo as one step.
@@ -118,19 +93,41 @@ class UndoHistory {
   std::string group_;
 };
 
+/// An editing session on a model of any type: validated edits of its editable parts (vertex
+/// frames: vertices, a1/a2, forces), whole-model transforms of every type, undo and redo (a
+/// drag is one step), and the solved model cached per revision. Models without editable parts
+/// are solved whenever they change and kept with their solution, so undo and redo do not
+/// solve again; a vertex-frame model is solved on first use after each change, on a topology
+/// built once per session.
 class ModelSession {
  public:
-  /// At most this many undo steps are kept (each is a snapshot of the model).
-  static constexpr std::size_t kMaxUndo = UndoHistory<VertexFrameModel>::kMaxUndo;
+  /// One undo step holds the model as it was and, for a model without editable parts, its
+  /// solution (both shared, never copied by undo or redo).
+  struct State {
+    std::shared_ptr<const AnyModel> model;
+    std::shared_ptr<const SolvedModel> solved;
+  };
+  /// At most this many undo steps are kept.
+  static constexpr std::size_t kMaxUndo = UndoHistory<State>::kMaxUndo;
 
-  explicit ModelSession(VertexFrameModel model);
+  /// Starts a session; a model without editable parts is solved now (its solver's refusal
+  /// throws ModelError naming `source`).
+  explicit ModelSession(AnyModel model, std::string source = "model");
 
-  const VertexFrameModel& model() const { return model_; }
-  /// Increases with every change of the model (edit, undo, redo).
+  const AnyModel& model() const { return *current_.model; }
+  /// The editable vertex-frame model, or nullptr when the model has no editable parts
+  /// (it is then only transformed whole).
+  const VertexFrameModel* frames() const { return std::get_if<VertexFrameModel>(&model()); }
+  bool editable() const { return frames() != nullptr; }
+  /// Increases with every change of the model (edit, transform, undo, redo).
   std::uint64_t revision() const { return revision_; }
 
-  /// Applies a valid edit (validate with parseEdit first).
+  /// Applies a valid edit (validate with parseEdit first); edits other than TransformModel
+  /// need editable(). A transform goes through transform().
   void apply(const Edit& edit, std::string_view group = {});
+  /// Moves, turns or scales the model (one undo step). An invalid result (checkTransform)
+  /// or a solver refusal throws ModelError and leaves the session as it was.
+  void transform(const AffineMap& map);
   bool undo();
   bool redo();
   std::size_t undoDepth() const { return history_.undoDepth(); }
@@ -139,62 +136,24 @@ class ModelSession {
   /// the same (the end of a drag).
   void endGroup() { history_.endGroup(); }
 
-  /// The surface of the current model, solved on first use after each change; the
-  /// topology is built once per session and shared by every solve.
-  const VertexFrameSurface& surface(const SolveOptions& options = {});
+  /// The current model solved (vertex frames with `options`; the other types ignore them).
+  const SolvedModel& solved(const SolveOptions& options = {});
 
  private:
-  void changed();
-
-  VertexFrameModel model_;
-  std::uint64_t revision_ = 0;
-  UndoHistory<VertexFrameModel> history_;
-  std::shared_ptr<const FrameTopology> topology_;
-  std::optional<VertexFrameSurface> surface_;
-  std::uint64_t surfaceRevision_ = 0;
-  SolveOptions surfaceOptions_;
-};
-
-/// A session on a spectral, cross-section or bspline-pde model: the studio shows it and
-/// moves, turns and scales it as a whole (curve and net editing are not session edits),
-/// with undo and redo.
-/// Each model is kept with its solved surface, so undo and redo do not solve again.
-class SpectralSession {
- public:
-  /// Solves the model; throws ModelError naming `source` when it cannot be solved or is
-  /// of another type (vertex frames are a ModelSession).
-  SpectralSession(AnyModel model, std::string source);
-
-  const AnyModel& model() const { return current_.model; }
-  /// The solved spectral or cross-section model (for a bspline-pde model: empty, its type
-  /// "bspline-pde"; bspline() holds the surface).
-  const SolvedSpectral& solved() const { return current_.solved; }
-  /// The solved bspline-pde model, or nullptr for the spectral types.
-  const SolvedBSplinePde* bspline() const {
-    return current_.bspline ? &*current_.bspline : nullptr;
-  }
-  std::uint64_t revision() const { return revision_; }
-
-  /// Transforms and solves the model (one undo step). A solver refusal throws ModelError
-  /// and leaves the session as it was.
-  void transform(const AffineMap& map);
-  bool undo();
-  bool redo();
-  std::size_t undoDepth() const { return history_.undoDepth(); }
-  std::size_t redoDepth() const { return history_.redoDepth(); }
-
- private:
-  struct Solved {
-    AnyModel model;
-    SolvedSpectral solved;
-    std::optional<SolvedBSplinePde> bspline;
-  };
-  Solved solve(AnyModel model) const;
+  /// Records the current state for undo and makes `next` current.
+  void change(std::shared_ptr<const AnyModel> next, std::shared_ptr<const SolvedModel> solved,
+              std::string_view group);
+  /// The state's solution when the model has no editable parts (else null: solved lazily).
+  std::shared_ptr<const SolvedModel> solveIfFixed(
+      const std::shared_ptr<const AnyModel>& model) const;
 
   std::string source_;
-  Solved current_;
+  State current_;
   std::uint64_t revision_ = 0;
-  UndoHistory<Solved> history_;
+  UndoHistory<State> history_;
+  std::shared_ptr<const FrameTopology> topology_;  // vertex frames: built once
+  std::uint64_t solvedRevision_ = 0;
+  SolveOptions solvedOptions_;
 };
 
 }  // namespace pdesurf

@@ -15,8 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "pdesurf/geometry.hpp"  // Vec3, SurfacePoint
 #include "pdesurf/mesh.hpp"
-#include "pdesurf/vertex_frames.hpp"  // Vec3, SurfacePoint
 
 namespace pdesurf {
 

@@ -20,7 +20,7 @@
 
 #include <Eigen/Core>
 
-#include "pdesurf/spectral_io.hpp"
+#include "pdesurf/model.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {

@@ -9,14 +9,10 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
-
+#include "pdesurf/geometry.hpp"
 #include "pdesurf/mesh.hpp"
 
 namespace pdesurf {
-
-using Vec3 = Eigen::Vector3d;
 
 // ---------------------------------------------------------------------------------------
 // The model: what the user wrote (a value; io validates it, solvers assume it valid).
@@ -160,11 +156,6 @@ struct ForceTerm {
   Region region;
 };
 
-/// S, ∂S/∂u and ∂S/∂v at one parameter point.
-struct SurfacePoint {
-  Vec3 p, du, dv;
-};
-
 /// One analytic patch: S(u,v) = Σ c[i] m_i(u,v) + Σ force terms, with the monomials
 /// m = 1, u, u², u³, v, v², v³, uv, u²v, uv² (seed eq. 4 and 13).
 struct VertexFramePatch {
@@ -205,11 +196,6 @@ VertexFrameSurface solve(const VertexFrameModel& model,
 
 // ---------------------------------------------------------------------------------------
 // Tessellation.
-
-struct TessellateOptions {
-  /// Samples per patch side (≥ 2): each patch becomes a resolution × resolution grid.
-  std::uint32_t resolution = 17;
-};
 
 /// A watertight, consistently oriented triangle mesh: a point on a shared edge (or a
 /// shared corner, or a collapsed edge) is one vertex; normals come from the analytic

@@ -8,7 +8,7 @@
 
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/mesh.hpp"
-#include "pdesurf/spectral_io.hpp"
+#include "pdesurf/spectral_model.hpp"
 
 namespace pdesurf {
 

@@ -5,16 +5,18 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 #include <Eigen/Geometry>
 
-#include "analysis/triangle_tree.hpp"
+#include "numerics/triangle_tree.hpp"
 
 namespace pdesurf {
 namespace {
@@ -107,7 +109,7 @@ constexpr std::size_t kVertexBlock = 4096, kTriangleBlock = 512;
 
 /// Samples A (as in DistanceOptions) and measures each sample's distance to B.
 OneWayDistance oneWay(const Mesh& a, const AreaTriangles& at, const ClosestPoints& b,
-                      const DistanceOptions& options, double diagonal) {
+                      double diagonal, const DistanceOptions& options) {
   // The vertices that triangles use, each once.
   std::vector<std::uint32_t> vertices;
   {
@@ -160,22 +162,15 @@ OneWayDistance oneWay(const Mesh& a, const AreaTriangles& at, const ClosestPoint
   const std::size_t blocks =
       vertexBlocks + (at.corners.size() + kTriangleBlock - 1) / kTriangleBlock;
   std::vector<Tally> tallies(blocks);
-  auto work = [&] {
-    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t i) {
-      if (i < vertexBlocks) {
-        vertexBlock(i * kVertexBlock, std::min(vertices.size(), (i + 1) * kVertexBlock),
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t i) {
+    if (i < vertexBlocks) {
+      vertexBlock(i * kVertexBlock, std::min(vertices.size(), (i + 1) * kVertexBlock), tallies[i]);
+    } else {
+      const std::size_t j = i - vertexBlocks;
+      triangleBlock(j * kTriangleBlock, std::min(at.corners.size(), (j + 1) * kTriangleBlock),
                     tallies[i]);
-      } else {
-        const std::size_t j = i - vertexBlocks;
-        triangleBlock(j * kTriangleBlock, std::min(at.corners.size(), (j + 1) * kTriangleBlock),
-                      tallies[i]);
-      }
-    });
-  };
-  if (options.threads > 0)
-    tbb::task_arena(static_cast<int>(options.threads)).execute(work);
-  else
-    work();  // as many threads as oneTBB allows (all cores, or the CLI's --threads)
+    }
+  });
 
   Tally total;
   for (const Tally& tally : tallies) total.merge(tally);
@@ -199,14 +194,17 @@ MeshDistance meshDistance(const Mesh& a, const Mesh& b, const DistanceOptions& o
   const AreaTriangles at = areaTriangles(a, "first"), bt = areaTriangles(b, "second");
   MeshDistance result;
   result.diagonal = boxDiagonal(b);
-  {
-    const ClosestPoints onB(bt);
-    result.aToB = oneWay(a, at, onB, options, result.diagonal);
-  }
-  {
-    const ClosestPoints onA(at);
-    result.bToA = oneWay(b, bt, onA, options, result.diagonal);
-  }
+  auto work = [&] {
+    // Both trees at once (each build is serial in CGAL), then each way's samples in parallel.
+    std::optional<ClosestPoints> onA, onB;
+    tbb::parallel_invoke([&] { onB.emplace(bt); }, [&] { onA.emplace(at); });
+    result.aToB = oneWay(a, at, *onB, result.diagonal, options);
+    result.bToA = oneWay(b, bt, *onA, result.diagonal, options);
+  };
+  if (options.threads > 0)
+    tbb::task_arena(static_cast<int>(options.threads)).execute(work);
+  else
+    work();  // as many threads as oneTBB allows (all cores, or the CLI's --threads)
   result.hausdorff = std::max(result.aToB.max, result.bToA.max);
   result.hausdorffRelative =
       result.diagonal > 0.0 ? result.hausdorff / result.diagonal : result.hausdorff;

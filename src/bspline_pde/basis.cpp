@@ -1,5 +1,5 @@
 // Cubic knots, basis functions and their derivatives, the mask rows and M (seed 004 §2).
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include <algorithm>
 #include <cmath>

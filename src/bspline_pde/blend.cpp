@@ -1,6 +1,6 @@
 // C1 blends of four PDE pieces from four boundary curves (seed Example 4); the rule for the
 // points the seed leaves "chosen" is in docs/bspline-pde.md §"C1 blends".
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include <algorithm>
 #include <cmath>

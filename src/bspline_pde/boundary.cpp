@@ -1,6 +1,6 @@
 // Boundary curves and second rows to the known rows and columns of a net (seed condition 3.1);
 // the rules are in docs/bspline-pde.md §"Boundaries from curves".
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include <cmath>
 #include <functional>

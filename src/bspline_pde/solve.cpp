@@ -2,7 +2,7 @@
 // span pair, T_u P T_vᵀ = 0, split into the unknown block X and the given points:
 // M X Nᵀ = Y = -T_u P₀ T_vᵀ (P₀: the net with its inner block zeroed), X = M⁻¹ Y N⁻ᵀ,
 // evaluated in the low-rank form below (Y has rank ≤ 6 per component).
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include <cmath>
 #include <stdexcept>

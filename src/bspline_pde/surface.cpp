@@ -1,5 +1,5 @@
 // Bicubic B-spline surfaces: evaluation from per-u and per-v basis rows, and tessellation.
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include <algorithm>
 #include <cmath>

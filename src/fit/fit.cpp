@@ -17,8 +17,8 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
-#include "analysis/triangle_tree.hpp"
 #include "fit/linear_surface.hpp"
+#include "numerics/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
 
 namespace pdesurf {

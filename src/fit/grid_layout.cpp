@@ -18,7 +18,8 @@
 #include <fmt/format.h>
 #include <Eigen/SparseLU>
 
-#include "analysis/triangle_tree.hpp"
+#include "fit/lattice_frame.hpp"
+#include "numerics/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
 
 namespace pdesurf {
@@ -211,13 +212,8 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
     }
   auto at = [&](std::uint32_t i, std::uint32_t j) { return j * nu + i; };
   for (std::uint32_t r = 0; r < options.v; ++r)
-    for (std::uint32_t c = 0; c < options.u; ++c) {
-      const std::uint32_t i = 2 * c, j = 2 * r;
-      Frame f;
-      f.vertices = {at(i, j),         at(i + 1, j),     at(i + 2, j), at(i + 2, j + 1),
-                    at(i + 2, j + 2), at(i + 1, j + 2), at(i, j + 2), at(i, j + 1)};
-      model.frames.push_back(f);
-    }
+    for (std::uint32_t c = 0; c < options.u; ++c)
+      model.frames.push_back(detail::latticeFrame(at, 2 * c, 2 * r));
   return model;
 }
 

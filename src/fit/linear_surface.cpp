@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vertex_frames/force_shape.hpp"
+#include "numerics/force_shape.hpp"
 
 namespace pdesurf::fit {
 namespace {

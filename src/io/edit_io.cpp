@@ -1,6 +1,6 @@
-// Parsing and validation of studio edits (include/pdesurf/session.hpp).
+// Parsing and validation of studio edits (include/pdesurf/edit_io.hpp).
+#include "pdesurf/edit_io.hpp"
 #include "io/json_reader.hpp"
-#include "pdesurf/session.hpp"
 
 namespace pdesurf {
 

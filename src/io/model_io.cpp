@@ -16,14 +16,6 @@
 
 namespace pdesurf {
 
-ModelError::ModelError(const std::string& file, const std::string& jsonPath,
-                       const std::string& problem)
-    : std::runtime_error(jsonPath.empty() ? fmt::format("{}: {}", file, problem)
-                                          : fmt::format("{}: {}: {}", file, jsonPath, problem)),
-      file_(file),
-      jsonPath_(jsonPath),
-      problem_(problem) {}
-
 using detail::Json;
 using detail::Reader;
 using detail::sideName;
@@ -123,6 +115,44 @@ std::string serializeVertexFrameModel(const VertexFrameModel& model) {
   for (const SharedForce& force : model.forces)
     doc["forces"].push_back({{"f0", jsonOf(force.f0)}, {"frames", force.frames}});
   return detail::writeModelJson(doc);
+}
+
+namespace {
+
+/// `out` with the keys of `in` that are not in `known` added, in `in`'s key order (the keys
+/// only `out` has follow).
+detail::ModelJson mergeUnknown(const detail::ModelJson& out, const detail::ModelJson& in,
+                               std::initializer_list<std::string_view> known) {
+  const auto isKnown = [&](const std::string& key) {
+    return std::find(known.begin(), known.end(), key) != known.end();
+  };
+  detail::ModelJson merged = detail::ModelJson::object();
+  for (const auto& [key, value] : in.items()) {
+    if (!isKnown(key))
+      merged[key] = value;
+    else if (out.contains(key))
+      merged[key] = out[key];
+  }
+  for (const auto& [key, value] : out.items())
+    if (!merged.contains(key)) merged[key] = value;
+  return merged;
+}
+
+}  // namespace
+
+std::string keepUnknownFields(const std::string& written, std::string_view original) {
+  using detail::ModelJson;
+  const ModelJson in = ModelJson::parse(original, nullptr, false);
+  if (in.is_discarded() || !in.is_object()) return written;
+  ModelJson out = ModelJson::parse(written);
+  out = mergeUnknown(out, in, {"type", "name", "vertices", "frames", "forces"});
+  const auto frames = in.find("frames");
+  if (frames != in.end() && frames->is_array() && out["frames"].size() == frames->size())
+    for (std::size_t f = 0; f < frames->size(); ++f)
+      if ((*frames)[f].is_object())
+        out["frames"][f] =
+            mergeUnknown(out["frames"][f], (*frames)[f], {"vertices", "a1", "a2", "forces"});
+  return detail::writeModelJson(out);
 }
 
 }  // namespace pdesurf

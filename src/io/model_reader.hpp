@@ -10,7 +10,8 @@
 #include <fmt/format.h>
 
 #include "io/json_reader.hpp"
-#include "pdesurf/bspline_pde_io.hpp"
+#include "pdesurf/bspline_pde_model.hpp"
+#include "pdesurf/spectral_model.hpp"
 
 namespace pdesurf::detail {
 
@@ -74,7 +75,12 @@ class ModelReader : public Reader {
   }
 };
 
-/// The "bspline-pde" document (src/io/bspline_pde_io.cpp); `source` names it in errors.
+// Each model type's document, parsed beside its type's other file code; `source` names it in
+// errors. parseModel (src/io/any_model_io.cpp) picks one by the document's "type".
+/// The "bspline-pde" document (src/io/bspline_pde_io.cpp).
 BSplinePdeModel parseBSplinePdeDocument(const Json& doc, const std::string& source);
+/// The "spectral" and "cross-sections" documents (src/io/spectral_io.cpp).
+SpectralModel parseSpectralDocument(const Json& doc, const std::string& source);
+CrossSectionModel parseCrossSectionsDocument(const Json& doc, const std::string& source);
 
 }  // namespace pdesurf::detail

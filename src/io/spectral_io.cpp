@@ -267,34 +267,17 @@ CrossSectionModel parseCrossSections(const Json& doc, const SpectralReader& rd) 
 
 }  // namespace
 
-AnyModel parseModel(std::string_view text, const std::string& source) {
-  SpectralReader rd(source);
-  const Json doc = rd.parseDocument(text);
-  rd.expectObject(doc, "$");
-  const std::string type = rd.string(rd.member(doc, "$", "type"), "$.type");
-  if (type == "vertex-frames") return detail::parseVertexFrameDocument(doc, rd);
-  if (type == "spectral") return parseSpectral(doc, rd);
-  if (type == "cross-sections") return parseCrossSections(doc, rd);
-  if (type == "bspline-pde") return detail::parseBSplinePdeDocument(doc, source);
-  rd.fail("$.type",
-          fmt::format("unknown model type \"{}\" (expected \"vertex-frames\", \"spectral\", "
-                      "\"cross-sections\" or \"bspline-pde\")",
-                      type));
+namespace detail {
+
+SpectralModel parseSpectralDocument(const Json& doc, const std::string& source) {
+  return parseSpectral(doc, SpectralReader(source));
 }
 
-const char* modelTypeName(const AnyModel& model) {
-  constexpr const char* kNames[] = {"vertex-frames", "spectral", "cross-sections", "bspline-pde"};
-  static_assert(std::size(kNames) == std::variant_size_v<AnyModel>);
-  return kNames[model.index()];
+CrossSectionModel parseCrossSectionsDocument(const Json& doc, const std::string& source) {
+  return parseCrossSections(doc, SpectralReader(source));
 }
 
-const std::string& modelNameOf(const AnyModel& model) {
-  return std::visit([](const auto& m) -> const std::string& { return m.name; }, model);
-}
-
-AnyModel loadModel(const std::string& path) {
-  return parseModel(detail::readModelFile(path), path);
-}
+}  // namespace detail
 
 CurveInput parseCurve(std::string_view json, const std::string& source, const std::string& path) {
   SpectralReader rd(source);
@@ -311,56 +294,6 @@ std::vector<CurveInput> loadCurves(const std::string& path) {
   for (std::size_t i = 0; i < list.size(); ++i)
     curves.push_back(rd.curve(list[i], fmt::format("$.curves[{}]", i), 0));
   return curves;
-}
-
-SpectralPatch solveModel(const SpectralModel& model, const std::string& source) {
-  try {
-    SpectralPatch patch = solveSpectral(model.op, model.conditions, model.options);
-    for (const SpineEdit& edit : model.spineEdits) patch = editSpine(patch, edit);
-    return patch;
-  } catch (const std::invalid_argument& e) {
-    throw ModelError(source, "$", e.what());
-  }
-}
-
-CrossSectionChain solveModel(const CrossSectionModel& model, const std::string& source) {
-  try {
-    return buildCrossSectionChain(model.curves, model.options);
-  } catch (const std::invalid_argument& e) {
-    throw ModelError(source, "$.curves", e.what());
-  }
-}
-
-SolvedSpectral solveSpectralModel(const SpectralModel& model, const std::string& source) {
-  SolvedSpectral s;
-  s.type = "spectral";
-  s.patch = solveModel(model, source);
-  return s;
-}
-
-SolvedSpectral solveSpectralModel(const CrossSectionModel& model, const std::string& source) {
-  SolvedSpectral s;
-  s.type = "cross-sections";
-  s.chain = solveModel(model, source);
-  return s;
-}
-
-std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source) {
-  if (const auto* m = std::get_if<SpectralModel>(&model)) return solveSpectralModel(*m, source);
-  if (const auto* m = std::get_if<CrossSectionModel>(&model)) return solveSpectralModel(*m, source);
-  return std::nullopt;
-}
-
-SpectralTessellateOptions spectralMeshOptions(std::uint32_t samples) {
-  SpectralTessellateOptions o;
-  o.uResolution = std::max(samples, 2u);
-  o.vResolution = std::max(4 * (o.uResolution - 1), 8u);
-  return o;
-}
-
-Mesh tessellate(const SolvedSpectral& solved, std::uint32_t samples) {
-  const SpectralTessellateOptions options = spectralMeshOptions(samples);
-  return solved.chain ? tessellate(*solved.chain, options) : tessellate(*solved.patch, options);
 }
 
 }  // namespace pdesurf

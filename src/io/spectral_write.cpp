@@ -88,16 +88,4 @@ std::string serializeModel(const CrossSectionModel& m) {
   return detail::writeModelJson(doc);
 }
 
-std::string serializeModel(const AnyModel& model) {
-  return std::visit(
-      [](const auto& m) -> std::string {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (std::is_same_v<T, VertexFrameModel>)
-          return serializeVertexFrameModel(m);
-        else
-          return serializeModel(m);
-      },
-      model);
-}
-
 }  // namespace pdesurf

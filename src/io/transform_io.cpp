@@ -1,10 +1,10 @@
 // Parsing and checking whole-model transforms as the studio sends them
-// (include/pdesurf/session.hpp: parseTransform, checkTransform).
+// (include/pdesurf/edit_io.hpp: parseTransform, checkTransform).
 #include <numbers>
 #include <stdexcept>
 
 #include "io/json_reader.hpp"
-#include "pdesurf/session.hpp"
+#include "pdesurf/edit_io.hpp"
 
 namespace pdesurf {
 
@@ -85,6 +85,10 @@ void checkTransform(const VertexFrameModel& model, const AffineMap& map) {
     for (std::uint32_t k : model.forces[i].frames)
       rd.checkSolvable(model.frames[k], map.vector(model.forces[i].f0), Region{},
                        fmt::format("$.forces[{}]", i), k, true);
+}
+
+void checkTransform(const AnyModel& model, const AffineMap& map) {
+  if (const auto* frames = std::get_if<VertexFrameModel>(&model)) checkTransform(*frames, map);
 }
 
 }  // namespace pdesurf

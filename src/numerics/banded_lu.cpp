@@ -1,5 +1,5 @@
 // Banded LU with partial pivoting (src/numerics/banded_lu.hpp).
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include "numerics/banded_lu.hpp"
 

@@ -1,7 +1,7 @@
 // Patches as clamped bicubic B-spline surfaces: exact conversions (Bézier form of the
 // vertex-frame polynomial, clamping of uniform B-splines) and the interpolating
 // approximation with its measured deviation (docs/nurbs-export.md).
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include "pdesurf/nurbs.hpp"
 
@@ -242,9 +242,13 @@ double absoluteTolerance(const NurbsExportOptions& options, double diagonal) {
 }
 
 NurbsFace approximateFace(const PatchFunction& f, std::uint32_t index, double tolerance,
-                          ApproximationOptions options) {
+                          const NurbsExportOptions& exportOptions, ApproximationOptions options) {
   options.tolerance = tolerance;
+  options.maxSpans =
+      std::max({exportOptions.maxSpans, options.initialUSpans, options.initialVSpans});
   Approximation a = approximate(f, options);
+  if (!a.withinTolerance && exportOptions.keepBest)
+    return {std::move(a.surface), index, false, a.deviation, false};
   if (!a.withinTolerance)
     throw NurbsToleranceError(fmt::format(
         "patch {}: the closest bicubic B-spline of up to {} spans per direction deviates by "
@@ -540,6 +544,11 @@ std::size_t NurbsModel::exactCount() const {
       std::count_if(faces.begin(), faces.end(), [](const NurbsFace& f) { return f.exact; }));
 }
 
+std::size_t NurbsModel::overToleranceCount() const {
+  return static_cast<std::size_t>(std::count_if(
+      faces.begin(), faces.end(), [](const NurbsFace& f) { return !f.withinTolerance; }));
+}
+
 NurbsModel toNurbs(const VertexFrameSurface& surface, const NurbsExportOptions& options) {
   NurbsModel model;
   model.diagonal = surfaceBounds(surface).diagonal();
@@ -557,7 +566,7 @@ NurbsModel toNurbs(const VertexFrameSurface& surface, const NurbsExportOptions& 
       face.deviation = measureDeviation(face.surface, f, kExactCheckSamples);
       model.faces.push_back(std::move(face));
     } else {
-      model.faces.push_back(approximateFace(f, k, model.tolerance, {}));
+      model.faces.push_back(approximateFace(f, k, model.tolerance, options, {}));
     }
   }
   return model;
@@ -584,7 +593,8 @@ NurbsModel toNurbs(const SolvedSpectral& solved, const NurbsExportOptions& optio
   ApproximationOptions approximation;
   approximation.initialVSpans = 16;
   for (std::uint32_t k = 0; k < functions.size(); ++k)
-    model.faces.push_back(approximateFace(functions[k], k, model.tolerance, approximation));
+    model.faces.push_back(
+        approximateFace(functions[k], k, model.tolerance, options, approximation));
   return model;
 }
 

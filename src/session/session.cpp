@@ -1,104 +1,95 @@
-// Editing sessions: edits, undo/redo with grouping, cached solves.
+// Editing sessions (include/pdesurf/session.hpp): edits, transforms, undo/redo with grouping,
+// cached solves, for a model of any type.
 #include "pdesurf/session.hpp"
 
 #include <stdexcept>
 
-#include "pdesurf/model_io.hpp"
+#include "pdesurf/edit_io.hpp"
 
 namespace pdesurf {
 
-ModelSession::ModelSession(VertexFrameModel model)
-    : model_(std::move(model)),
-      topology_(std::make_shared<const FrameTopology>(buildTopology(model_))) {}
+std::shared_ptr<const SolvedModel> ModelSession::solveIfFixed(
+    const std::shared_ptr<const AnyModel>& model) const {
+  if (hasEditableParts(*model)) return nullptr;
+  return std::make_shared<const SolvedModel>(solveModel(model, source_));
+}
 
-void ModelSession::changed() {
+ModelSession::ModelSession(AnyModel model, std::string source) : source_(std::move(source)) {
+  auto shared = std::make_shared<const AnyModel>(std::move(model));
+  if (const auto* frames = std::get_if<VertexFrameModel>(shared.get()))
+    topology_ = std::make_shared<const FrameTopology>(buildTopology(*frames));
+  current_ = {shared, solveIfFixed(shared)};  // may throw: nothing to undo yet
+}
+
+void ModelSession::change(std::shared_ptr<const AnyModel> next,
+                          std::shared_ptr<const SolvedModel> solved, std::string_view group) {
+  // A vertex-frame solution is not kept for undo: it is solved again when asked for.
+  history_.record(State{current_.model, editable() ? nullptr : current_.solved}, group);
+  current_ = {std::move(next), std::move(solved)};
   ++revision_;
-  surface_.reset();
 }
 
 void ModelSession::apply(const Edit& edit, std::string_view group) {
-  history_.record(model_, group);
+  if (const auto* t = std::get_if<TransformModel>(&edit)) {
+    transform(t->map);
+    return;
+  }
+  if (!editable()) throw std::logic_error("ModelSession::apply: the model has no editable parts");
+  VertexFrameModel next = *frames();
   std::visit(
       [&](const auto& e) {
         using T = std::decay_t<decltype(e)>;
         if constexpr (std::is_same_v<T, MoveVertex>) {
-          model_.vertices[e.vertex] = e.position;
+          next.vertices[e.vertex] = e.position;
         } else if constexpr (std::is_same_v<T, SetParameters>) {
           for (std::uint32_t k : e.frames) {
-            if (e.a1) model_.frames[k].a1 = *e.a1;
-            if (e.a2) model_.frames[k].a2 = *e.a2;
+            if (e.a1) next.frames[k].a1 = *e.a1;
+            if (e.a2) next.frames[k].a2 = *e.a2;
           }
         } else if constexpr (std::is_same_v<T, SetFrameForces>) {
-          model_.frames[e.frame].forces = e.forces;
+          next.frames[e.frame].forces = e.forces;
         } else if constexpr (std::is_same_v<T, SetSharedForces>) {
-          model_.forces = e.forces;
+          next.forces = e.forces;
         } else {
-          static_assert(std::is_same_v<T, TransformModel>);
-          model_ = transformModel(model_, e.map);
+          static_assert(std::is_same_v<T, TransformModel>);  // handled above
         }
       },
       edit);
-  changed();
+  change(std::make_shared<const AnyModel>(std::move(next)), nullptr, group);
+}
+
+void ModelSession::transform(const AffineMap& map) {
+  checkTransform(model(), map);
+  auto next = std::make_shared<const AnyModel>(transformModel(model(), map));
+  auto solved = solveIfFixed(next);  // may throw: nothing changed yet
+  change(std::move(next), std::move(solved), {});
 }
 
 bool ModelSession::undo() {
-  if (!history_.undo(model_)) return false;
-  changed();
-  return true;
-}
-
-bool ModelSession::redo() {
-  if (!history_.redo(model_)) return false;
-  changed();
-  return true;
-}
-
-const VertexFrameSurface& ModelSession::surface(const SolveOptions& options) {
-  const bool sameOptions =
-      options.solver == surfaceOptions_.solver && options.seedFrame == surfaceOptions_.seedFrame;
-  if (!surface_ || surfaceRevision_ != revision_ || !sameOptions) {
-    surface_ = solve(model_, topology_, options);
-    surfaceRevision_ = revision_;
-    surfaceOptions_ = options;
-  }
-  return *surface_;
-}
-
-// ---------------------------------------------------------------------------------------
-// Spectral and cross-section models
-
-SpectralSession::Solved SpectralSession::solve(AnyModel model) const {
-  if (auto solved = solveIfSpectral(model, source_))
-    return {std::move(model), std::move(*solved), std::nullopt};
-  if (const auto* b = std::get_if<BSplinePdeModel>(&model)) {
-    SolvedSpectral empty;
-    empty.type = "bspline-pde";
-    std::optional<SolvedBSplinePde> bspline = solveBSplineModel(*b, source_);
-    return {std::move(model), std::move(empty), std::move(bspline)};
-  }
-  throw ModelError(source_, "$.type", "vertex-frames models open in a ModelSession");
-}
-
-SpectralSession::SpectralSession(AnyModel model, std::string source)
-    : source_(std::move(source)), current_(solve(std::move(model))) {}
-
-void SpectralSession::transform(const AffineMap& map) {
-  Solved next = solve(transformModel(current_.model, map));  // may throw: nothing changed yet
-  history_.record(current_, {});
-  current_ = std::move(next);
-  ++revision_;
-}
-
-bool SpectralSession::undo() {
+  if (editable()) current_.solved.reset();  // kept for redo: the model alone
   if (!history_.undo(current_)) return false;
   ++revision_;
   return true;
 }
 
-bool SpectralSession::redo() {
+bool ModelSession::redo() {
+  if (editable()) current_.solved.reset();
   if (!history_.redo(current_)) return false;
   ++revision_;
   return true;
+}
+
+const SolvedModel& ModelSession::solved(const SolveOptions& options) {
+  if (!editable()) return *current_.solved;
+  const bool sameOptions =
+      options.solver == solvedOptions_.solver && options.seedFrame == solvedOptions_.seedFrame;
+  if (!current_.solved || solvedRevision_ != revision_ || !sameOptions) {
+    current_.solved = std::make_shared<const SolvedModel>(
+        solveModel(current_.model, source_, options, topology_));
+    solvedRevision_ = revision_;
+    solvedOptions_ = options;
+  }
+  return *current_.solved;
 }
 
 }  // namespace pdesurf

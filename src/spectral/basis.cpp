@@ -1,4 +1,4 @@
-#include "spectral/eigen_warnings.hpp"  // first: see the file
+#include "numerics/eigen_warnings.hpp"  // first: see the file
 
 #include "spectral/basis.hpp"
 

@@ -1,7 +1,7 @@
 // Cross-section chains of sixth-order patches (seed 002 §3.2): the global C4 chain (all
 // joints solved together, docs/spectral.md "The global chain"), method 2 (exact C2 by
 // derivative matching) and method 1 (overlapping windows of six curves).
-#include "spectral/eigen_warnings.hpp"  // first: see the file
+#include "numerics/eigen_warnings.hpp"  // first: see the file
 
 #include <algorithm>
 #include <cmath>

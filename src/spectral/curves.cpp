@@ -1,6 +1,6 @@
 // Closed curves: Fourier series, parameters of sampled curves, least-squares fitting
 // (seed 002 §3.1), periodic splines for tails, natural splines for spine edits.
-#include "spectral/eigen_warnings.hpp"  // first: see the file
+#include "numerics/eigen_warnings.hpp"  // first: see the file
 
 #include <algorithm>
 #include <cmath>

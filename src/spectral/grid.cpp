@@ -1,5 +1,5 @@
 // Grid evaluation with per-u and per-v tables, and watertight tessellation.
-#include "spectral/eigen_warnings.hpp"  // first: see the file
+#include "numerics/eigen_warnings.hpp"  // first: see the file
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Solving and evaluating one spectral patch (docs/derivations.md §2; seed 003 §2.1, seed 002 §3.2).
-#include "spectral/eigen_warnings.hpp"  // first: see the file
+#include "numerics/eigen_warnings.hpp"  // first: see the file
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Sections taken as they come (include/pdesurf/sections.hpp; docs/spectral.md).
-#include "spectral/eigen_warnings.hpp"  // first: see the file
+#include "numerics/eigen_warnings.hpp"  // first: see the file
 
 #include "pdesurf/sections.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "numerics/force_shape.hpp"
 #include "pdesurf/vertex_frames.hpp"
-#include "vertex_frames/force_shape.hpp"
 
 namespace pdesurf {
 

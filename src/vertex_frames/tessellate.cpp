@@ -30,9 +30,9 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "numerics/force_shape.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "runtime/simd.hpp"
-#include "vertex_frames/force_shape.hpp"
 
 namespace pdesurf {
 

@@ -2,7 +2,7 @@
 // the seed's closed forms, polynomial reproduction, the sixth mixed derivative on every span, the
 // Kronecker solve against a dense solve, invertibility over a range of n, untouched given points,
 // errors, boundaries from curves, the seed's examples 1–4 and tessellation.
-#include "spectral/eigen_warnings.hpp"  // first: before Eigen
+#include "numerics/eigen_warnings.hpp"  // first: before Eigen
 
 #include <algorithm>
 #include <cmath>

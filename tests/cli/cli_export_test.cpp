@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pdesurf/nurbs.hpp"
 #include "support/cli_run.hpp"
 
 namespace pdesurf {
@@ -110,6 +111,49 @@ TEST_F(CliExport, AnUnreachableToleranceFailsAndLeavesNoFile) {
   EXPECT_TRUE(contains(r.err, "patch 0")) << r.err;
   EXPECT_TRUE(contains(r.err, "give a larger --tolerance")) << r.err;
   EXPECT_EQ(entries(), std::vector<std::string>{"flat.json"});
+}
+
+TEST_F(CliExport, UnderTheDefaultToleranceAFaceOverItIsWrittenWithAWarning) {
+  // Four spans cannot hold sculpt.json's forced patches within 1e-4 of the diagonal: with
+  // the default tolerance the file is written all the same, each such face its finest fit.
+  const CliRun r = run("export " + example("sculpt.json") + " -o s.step --max-spans 4 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "warning: s.step:")) << r.err;
+  EXPECT_TRUE(contains(r.err, "written as the finest fit tried")) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double tolerance = j["tolerance"].get<double>();
+  std::size_t over = 0;
+  for (const auto& face : j["faces"])
+    if (!face["within_tolerance"].get<bool>()) {
+      ++over;
+      EXPECT_FALSE(face["exact"].get<bool>());
+      // within_tolerance means deviation ≤ kApproximationSafety × tolerance (nurbs.hpp)
+      EXPECT_GT(face["deviation"].get<double>(), kApproximationSafety * tolerance);
+    }
+  EXPECT_GT(over, 0u);
+  EXPECT_EQ(j["faces_over_tolerance"].get<std::size_t>(), over);
+  EXPECT_TRUE(read("s.step").starts_with("ISO-10303-21;"));
+
+  // The same cap with a tolerance asked for is an error, and no file.
+  const CliRun strict = run("export " + example("sculpt.json") +
+                            " -o t.step --max-spans 4 --tolerance " + j["tolerance"].dump());
+  EXPECT_EQ(strict.code, 2);
+  EXPECT_TRUE(contains(strict.err, "give a larger --tolerance")) << strict.err;
+  EXPECT_EQ(entries(), (std::vector<std::string>{"flat.json", "s.step"}));
+}
+
+TEST_F(CliExport, EveryBundledExampleExportsWithinTheDefaultTolerance) {
+  for (const auto& entry : std::filesystem::directory_iterator(
+           std::filesystem::path(PDESURF_SOURCE_DIR) / "examples")) {
+    if (entry.path().extension() != ".json") continue;
+    const std::string name = entry.path().filename().string();
+    const CliRun r = run("export " + example(name) + " -o x.step --json");
+    ASSERT_EQ(r.code, 0) << name << ": " << r.err;
+    EXPECT_TRUE(r.err.empty()) << name << ": " << r.err;  // no face over the tolerance
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["faces_over_tolerance"].get<std::size_t>(), 0u) << name;
+    EXPECT_LE(j["max_deviation"].get<double>(), j["tolerance"].get<double>()) << name;
+  }
 }
 
 TEST_F(CliExport, AnUnwritableOutputExitsOneAndLeavesNoFile) {

@@ -126,7 +126,8 @@ TEST_F(CliRebuild, LayoutAndGridTogetherOrNeitherIsAUsageError) {
   writeTorusAndCage();
   CliRun r = run("rebuild torus.obj --as vertex-frames -o out.json");
   EXPECT_EQ(r.code, 2);
-  EXPECT_TRUE(contains(r.err, "give one of --layout QUADS and --grid U V")) << r.err;
+  EXPECT_TRUE(contains(r.err, "give one of --layout QUADS, --grid U V and --tube RINGS SECTORS"))
+      << r.err;
   r = run("rebuild torus.obj --as vertex-frames --layout cage.obj --grid 2 2 -o out.json");
   EXPECT_EQ(r.code, 2);
   r = run("rebuild torus.obj --as nurbs --layout cage.obj -o out.json");

@@ -3,6 +3,7 @@
 
 #include <random>
 
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 #include "support/models.hpp"
@@ -85,17 +86,18 @@ TEST(Edits, InvalidOnesNameTheirJsonPath) {
 TEST(Session, AppliesEditsAndSolvesTheEditedModel) {
   const VertexFrameModel m = grid();
   ModelSession s(m);
-  const Vec3 before = s.surface().patches[0].position(0.5, 0.5);
+  const Vec3 before = s.solved().frames()->patches[0].position(0.5, 0.5);
   const std::uint32_t v = m.frames[0].vertices[4];
   s.apply(MoveVertex{v, m.vertices[v] + Vec3(0, 0, 1)});
-  EXPECT_EQ(s.model().vertices[v], m.vertices[v] + Vec3(0, 0, 1));
+  EXPECT_EQ(s.frames()->vertices[v], m.vertices[v] + Vec3(0, 0, 1));
   EXPECT_EQ(s.revision(), 1u);
-  const Vec3 after = s.surface().patches[0].position(0.5, 0.5);
+  const Vec3 after = s.solved().frames()->patches[0].position(0.5, 0.5);
   EXPECT_GT((after - before).norm(), 1e-3);
   // The session's solve equals a fresh solve of its model.
-  const VertexFrameSurface fresh = solve(s.model());
+  const VertexFrameSurface fresh = solve(*s.frames());
   for (std::size_t k = 0; k < m.frames.size(); ++k)
-    for (int i = 0; i < 10; ++i) EXPECT_EQ(s.surface().patches[k].c[i], fresh.patches[k].c[i]);
+    for (int i = 0; i < 10; ++i)
+      EXPECT_EQ(s.solved().frames()->patches[k].c[i], fresh.patches[k].c[i]);
 }
 
 TEST(Session, ADragIsOneUndoStepAndRedoRestoresIt) {
@@ -107,17 +109,17 @@ TEST(Session, ADragIsOneUndoStepAndRedoRestoresIt) {
   s.endGroup();
   s.apply(SetParameters{{0}, Vec3(2, 2, 2), std::nullopt}, "slider");
   EXPECT_EQ(s.undoDepth(), 2u);
-  const VertexFrameModel dragged = s.model();
+  const VertexFrameModel dragged = *s.frames();
   ASSERT_TRUE(s.undo());  // the slider
-  EXPECT_EQ(s.model().frames[0].a1, Vec3::Ones());
-  EXPECT_EQ(s.model().vertices[v], dragged.vertices[v]);
+  EXPECT_EQ(s.frames()->frames[0].a1, Vec3::Ones());
+  EXPECT_EQ(s.frames()->vertices[v], dragged.vertices[v]);
   ASSERT_TRUE(s.undo());  // the whole drag
-  EXPECT_EQ(s.model().vertices[v], m.vertices[v]);
+  EXPECT_EQ(s.frames()->vertices[v], m.vertices[v]);
   EXPECT_FALSE(s.undo());
   ASSERT_TRUE(s.redo());
-  EXPECT_EQ(s.model().vertices[v], dragged.vertices[v]);
+  EXPECT_EQ(s.frames()->vertices[v], dragged.vertices[v]);
   ASSERT_TRUE(s.redo());
-  EXPECT_EQ(s.model().frames[0].a1, Vec3(2, 2, 2));
+  EXPECT_EQ(s.frames()->frames[0].a1, Vec3(2, 2, 2));
   EXPECT_FALSE(s.redo());
   // A new edit after an undo drops the redo history.
   ASSERT_TRUE(s.undo());
@@ -128,12 +130,12 @@ TEST(Session, ADragIsOneUndoStepAndRedoRestoresIt) {
 TEST(Session, ForcesAndSharedForcesTakeEffect) {
   const VertexFrameModel m = grid();
   ModelSession s(m);
-  const Vec3 flat = s.surface().patches[3].position(0.5, 0.5);
+  const Vec3 flat = s.solved().frames()->patches[3].position(0.5, 0.5);
   s.apply(SetSharedForces{{SharedForce{Vec3(0, 0, -5), {3}}}});
   const double expected = 5.0 / (M_PI * M_PI * 2.0);  // -f0/(π²(a1+a2)) at the centre
-  EXPECT_NEAR((s.surface().patches[3].position(0.5, 0.5) - flat).z(), expected, 1e-12);
+  EXPECT_NEAR((s.solved().frames()->patches[3].position(0.5, 0.5) - flat).z(), expected, 1e-12);
   s.apply(SetFrameForces{3, {FrameForce{Vec3(0, 0, -5), Region{}}}});
-  EXPECT_NEAR((s.surface().patches[3].position(0.5, 0.5) - flat).z(), 2 * expected, 1e-12);
+  EXPECT_NEAR((s.solved().frames()->patches[3].position(0.5, 0.5) - flat).z(), 2 * expected, 1e-12);
 }
 
 }  // namespace

@@ -466,6 +466,97 @@ TEST_F(StudioServerTest, SaveThenReopenGivesTheSameModel) {
   EXPECT_EQ(reopened["model"].dump(), edited["model"].dump());
 }
 
+TEST_F(StudioServerTest, SaveKeepsTheFieldsTheEditorDoesNotHold) {
+  // A file with a description, a tool's own top-level field and a frame's own field.
+  Json file = Json::parse(gridModel());
+  file["description"] = "a 2x2 grid";
+  file["x-tool"] = {{"version", 3}, {"layers", {"a", "b"}}};
+  file["frames"][1]["label"] = "corner";
+  file["frames"][2]["a1"] = {2, 2, 2};
+  writeText(root_ / "described.json", file.dump(2));
+  ASSERT_EQ(post("/api/open", R"({"path": "described.json"})")->status, 200);
+  ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.7))->status, 200);
+  // An edit back to a default value (a1 = 1, which the writer omits) must not bring the
+  // file's old value back: only fields the editor does not hold are kept.
+  ASSERT_EQ(
+      post("/api/edit", R"({"op": "set-parameters", "frames": [2], "a1": [1, 1, 1]})")->status,
+      200);
+  const Json edited = model();
+  ASSERT_EQ(post("/api/save")->status, 200);
+  const Json saved = Json::parse(readText(root_ / "described.json"));
+  EXPECT_EQ(saved["description"], "a 2x2 grid");
+  EXPECT_EQ(saved["x-tool"], file["x-tool"]);
+  EXPECT_EQ(saved["frames"][1]["label"], "corner");
+  EXPECT_FALSE(saved["frames"][2].contains("a1"));
+  EXPECT_EQ(saved["vertices"][12], Json::array({1.0, 1.0, 0.7}));
+  // The model is the edited one.
+  EXPECT_EQ(serializeVertexFrameModel(parseVertexFrameModel(saved.dump(), "saved")),
+            serializeVertexFrameModel(parseVertexFrameModel(edited["model"].dump(), "edited")));
+  // Saved again (and as a copy), the fields stay.
+  ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.6))->status, 200);
+  ASSERT_EQ(post("/api/save-as", R"({"path": "copy.json"})")->status, 200);
+  const Json copy = Json::parse(readText(root_ / "copy.json"));
+  EXPECT_EQ(copy["description"], "a 2x2 grid");
+  EXPECT_EQ(copy["frames"][1]["label"], "corner");
+}
+
+TEST_F(StudioServerTest, ExportWritesStepAndIges) {
+  const auto step = post("/api/export", R"({"path": "out/grid.step"})");
+  ASSERT_TRUE(step);
+  ASSERT_EQ(step->status, 200) << step->body;
+  const Json report = Json::parse(step->body);
+  EXPECT_EQ(report["path"], "out/grid.step");
+  const std::string text = readText(root_ / "out/grid.step");
+  ASSERT_EQ(text.rfind("ISO-10303-21;", 0), 0u) << text.substr(0, 40);
+  std::size_t faces = 0;
+  for (std::size_t at = text.find("ADVANCED_FACE"); at != std::string::npos;
+       at = text.find("ADVANCED_FACE", at + 1))
+    ++faces;
+  EXPECT_EQ(faces, report["faces"].get<std::size_t>());
+  EXPECT_GE(faces, 4u);  // at least one face per frame
+  const auto iges = post("/api/export", R"({"path": "grid.igs"})");
+  ASSERT_EQ(iges->status, 200) << iges->body;
+  const std::string igs = readText(root_ / "grid.igs");
+  ASSERT_GT(igs.size(), 80u);
+  EXPECT_EQ(igs[72], 'S');  // the start section's letter in column 73
+}
+
+TEST_F(StudioServerTest, BoundariesAreThePatchesEdgeCurves) {
+  const auto r = get("/api/boundaries?samples=5");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  // The grid: 4 frames, 4 sides of 5 points each.
+  ASSERT_EQ(r->body.size(), 4u * 4 * 5 * 3 * sizeof(float));
+  std::vector<float> xyz(r->body.size() / sizeof(float));
+  std::memcpy(xyz.data(), r->body.data(), r->body.size());
+  const Json m = model()["model"];
+  const auto point = [&](std::size_t patch, int side, int i) {
+    const std::size_t k = 3 * ((patch * 4 + side) * 5 + i);
+    return Vec3(xyz[k], xyz[k + 1], xyz[k + 2]);
+  };
+  const auto vertex = [&](int v) {
+    return Vec3(m["vertices"][v][0].get<double>(), m["vertices"][v][1].get<double>(),
+                m["vertices"][v][2].get<double>());
+  };
+  // Each side is a closed loop's quarter: it ends where the next side starts, and the
+  // loop's four corners are the frame's corner vertices (P1, P3, P5, P7), in some order.
+  constexpr double kFloatTolerance = 1e-6;  // float32 rounding of coordinates near 1
+  for (std::size_t f = 0; f < 4; ++f) {
+    std::vector<Vec3> corners;
+    for (int side = 0; side < 4; ++side) {
+      EXPECT_LT((point(f, side, 4) - point(f, (side + 1) % 4, 0)).norm(), kFloatTolerance);
+      corners.push_back(point(f, side, 0));
+    }
+    for (int c : {0, 2, 4, 6}) {
+      const Vec3 p = vertex(m["frames"][f]["vertices"][c].get<int>());
+      double nearest = 1e9;
+      for (const Vec3& q : corners) nearest = std::min(nearest, (p - q).norm());
+      EXPECT_LT(nearest, kFloatTolerance) << "frame " << f << " corner " << c;
+    }
+  }
+  EXPECT_EQ(failure(get("/api/boundaries?samples=1")).first, 400);
+}
+
 TEST_F(StudioServerTest, AutosaveRecoversAfterACrash) {
   ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.9))->status, 200);
   ASSERT_EQ(post("/api/edit", move(6, 0.5, 0.5, -0.4))->status, 200);

@@ -160,7 +160,7 @@ TEST(Parallel, SlicesAreTheSameForAnyThreadCount) {
 TEST(MeshBuffer, LargeBlocksStartOnHugePagesAndKeepTheirValuesWhenTheyGrow) {
   constexpr std::size_t kHugePage = std::size_t{2} << 20;
   MeshBuffer<float> big;
-  big.resize(detail::kHugeBlockBytes / sizeof(float) + 3);
+  big.resize(detail::kMappedBlockBytes / sizeof(float) + 3);
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(big.data()) % kHugePage, 0u);
   for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<float>(i % 1000);
   big.resize(3 * big.size());  // moves into a new block
@@ -170,6 +170,49 @@ TEST(MeshBuffer, LargeBlocksStartOnHugePagesAndKeepTheirValuesWhenTheyGrow) {
   MeshBuffer<std::uint32_t> small(10, 7u);  // an explicit value is still written
   EXPECT_EQ(small, MeshBuffer<std::uint32_t>(10, 7u));
 }
+
+#if defined(__linux__)
+TEST(MeshBuffer, AFreedLargeBlockIsReusedForTheNextOfAboutItsSizeAndReleasedOnRequest) {
+  constexpr std::size_t kHugePage = std::size_t{2} << 20;
+  releaseMeshMemory();  // other tests of this process may have left blocks
+  ASSERT_EQ(detail::cachedMeshBlockBytes(), 0u);
+  const std::size_t floats = 3 * kHugePage / sizeof(float) + 5;  // 3 huge pages and a bit
+  const float* first = nullptr;
+  {
+    MeshBuffer<float> a;
+    a.resize(floats);
+    first = a.data();
+  }
+  EXPECT_EQ(detail::cachedMeshBlockBytes(), 4 * kHugePage);  // rounded up to whole pages
+  {
+    MeshBuffer<float> tooSmall;  // under half the cached block: a block of its own
+    tooSmall.resize(kHugePage / sizeof(float));
+    EXPECT_NE(tooSmall.data(), first);
+    MeshBuffer<float> b;  // 3 huge pages: the cached block, its fourth page unmapped
+    b.resize(floats - 1000);
+    EXPECT_EQ(b.data(), first);
+    EXPECT_EQ(detail::cachedMeshBlockBytes(), 0u);
+  }
+  EXPECT_EQ(detail::cachedMeshBlockBytes(), 4 * kHugePage);  // 3 + 1
+  EXPECT_EQ(releaseMeshMemory(), 4 * kHugePage);
+  EXPECT_EQ(detail::cachedMeshBlockBytes(), 0u);
+}
+
+TEST(MeshBuffer, TheCacheNeverHoldsMoreThanItsCap) {
+  releaseMeshMemory();
+  // Blocks of 0.4 of the cap, never written (mapped, not faulted in: no memory is used).
+  const std::size_t floats = detail::kBlockCacheBytes / 10 * 4 / sizeof(float);
+  for (int k = 0; k < 4; ++k) {
+    MeshBuffer<float> block;
+    MeshBuffer<float> other;  // two alive at once, so the second cannot reuse the first
+    block.reserve(floats);
+    other.reserve(floats);
+  }
+  EXPECT_LE(detail::cachedMeshBlockBytes(), detail::kBlockCacheBytes);
+  EXPECT_GT(detail::cachedMeshBlockBytes(), detail::kBlockCacheBytes / 2);  // kept what fits
+  releaseMeshMemory();
+}
+#endif
 
 }  // namespace
 }  // namespace pdesurf

@@ -4,6 +4,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { MeshData, Model, Vec3 } from './api';
+import { curvatureColors, symmetricRange, vertexCurvatures } from './curvature';
 
 const FRAME_EDGES = 8;
 /** Above this many changed runs a delta uploads the whole buffer instead. */
@@ -27,12 +28,72 @@ const ANTIALIAS = (() => {
   return aa === null ? !softwareWebGL() : aa !== '0';
 })();
 
+/** Size of the axis gizmo, CSS pixels. */
+const GIZMO_PIXELS = 84;
+
+/** A text label that always faces the camera. */
+function labelSprite(text: string, color: string): THREE.Sprite {
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = 64;
+  const g = canvas.getContext('2d')!;
+  g.font = 'bold 44px system-ui, sans-serif';
+  g.fillStyle = color;
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillText(text, 32, 34);
+  const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: new THREE.CanvasTexture(canvas), depthTest: false }));
+  sprite.scale.setScalar(0.55);
+  return sprite;
+}
+
+/** The x (red), y (green) and z (blue) axes as the camera sees them, in a corner. */
+class AxisGizmo {
+  private readonly scene = new THREE.Scene();
+  private readonly camera = new THREE.OrthographicCamera(-1.5, 1.5, 1.5, -1.5, 0.1, 10);
+
+  constructor() {
+    const axes: [THREE.Vector3, string, string][] = [
+      [new THREE.Vector3(1, 0, 0), '#d62828', 'x'],
+      [new THREE.Vector3(0, 1, 0), '#2a9d3f', 'y'],
+      [new THREE.Vector3(0, 0, 1), '#1d4ed8', 'z'],
+    ];
+    for (const [dir, color, name] of axes) {
+      const line = new THREE.Line(
+        new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(), dir]),
+        new THREE.LineBasicMaterial({ color, linewidth: 2 }),
+      );
+      const label = labelSprite(name, color);
+      label.position.copy(dir).multiplyScalar(1.25);
+      this.scene.add(line, label);
+    }
+  }
+
+  render(renderer: THREE.WebGLRenderer, main: THREE.Camera): void {
+    const size = renderer.getSize(new THREE.Vector2());
+    if (size.x < 3 * GIZMO_PIXELS || size.y < 3 * GIZMO_PIXELS) return;
+    this.camera.quaternion.copy(main.quaternion);
+    this.camera.position.set(0, 0, 3).applyQuaternion(main.quaternion);
+    const x = size.x - GIZMO_PIXELS - 6, y = 6;
+    const autoClear = renderer.autoClear;
+    renderer.autoClear = false;
+    renderer.setScissorTest(true);
+    renderer.setScissor(x, y, GIZMO_PIXELS, GIZMO_PIXELS);
+    renderer.setViewport(x, y, GIZMO_PIXELS, GIZMO_PIXELS);
+    renderer.clearDepth();
+    renderer.render(this.scene, this.camera);
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, size.x, size.y);
+    renderer.autoClear = autoClear;
+  }
+}
+
 /** A canvas with its renderer, scene, camera and orbit controls, rendered when it changes. */
 export class Viewport {
   readonly renderer: THREE.WebGLRenderer;
   readonly scene = new THREE.Scene();
   readonly camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
   controls!: OrbitControls;
+  private readonly gizmo = new AxisGizmo();
 
   constructor(readonly container: HTMLElement) {
     this.renderer = new THREE.WebGLRenderer({ antialias: ANTIALIAS });
@@ -57,6 +118,17 @@ export class Viewport {
     this.controls.addEventListener('change', () => this.invalidate());
   }
 
+  private readonly fullPixelRatio = Math.min(window.devicePixelRatio, 2);
+
+  /** Draws at `scale` × the screen's pixel density (a preview during a gesture: a software
+   * renderer's cost grows with the pixels filled), or at full density (scale 1). */
+  setPixelScale(scale: number): void {
+    const ratio = this.fullPixelRatio * scale;
+    if (this.renderer.getPixelRatio() === ratio) return;
+    this.renderer.setPixelRatio(ratio);
+    this.resize();
+  }
+
   resize(): void {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);
@@ -68,13 +140,14 @@ export class Viewport {
     this.invalidate();
   }
 
-  /** Looks at a box from the front-right, above (z is up), near enough that its corners
+  /** Looks at a box along `direction` (from the box toward the camera; default: the
+   * current direction, or front-right above for a new view), near enough that its corners
    * just fit the view. */
-  fit(box: THREE.Box3): void {
+  fit(box: THREE.Box3, direction?: THREE.Vector3): void {
     if (box.isEmpty()) return;
     const center = box.getCenter(new THREE.Vector3());
     const size = Math.max(box.getSize(new THREE.Vector3()).length(), 1e-3);
-    const toCamera = new THREE.Vector3(0.55, -1.2, 0.9).normalize();
+    const toCamera = (direction ?? this.viewDirection()).clone().normalize();
     const right = new THREE.Vector3().crossVectors(this.camera.up, toCamera).normalize();
     const up = new THREE.Vector3().crossVectors(toCamera, right);
     const tanV = Math.tan(THREE.MathUtils.degToRad(this.camera.fov) / 2);
@@ -100,6 +173,31 @@ export class Viewport {
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(center);
     this.controls.update();
+    this.fitted = true;
+    this.invalidate();
+  }
+
+  private fitted = false;
+
+  /** From the camera's target toward the camera (front-right above until a first fit). */
+  viewDirection(): THREE.Vector3 {
+    if (!this.fitted) return ISO_VIEW.clone();
+    return this.camera.position.clone().sub(this.controls.target).normalize();
+  }
+
+  /** Looks along a named direction at a box (a view preset). */
+  setView(view: ViewName, box: THREE.Box3): void {
+    this.fit(box, VIEW_DIRECTIONS[view]);
+  }
+
+  /** Takes another view's camera (linked cameras): same place, target and zoom. */
+  follow(other: Viewport): void {
+    this.camera.position.copy(other.camera.position);
+    this.camera.quaternion.copy(other.camera.quaternion);
+    this.camera.near = other.camera.near;
+    this.camera.far = other.camera.far;
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(other.controls.target);
     this.invalidate();
   }
 
@@ -116,14 +214,20 @@ export class Viewport {
     if (this.controls.update()) this.dirty = true; // damping still moving the camera
     if (!this.dirty) return false;
     this.dirty = false;
-    this.renderer.render(this.scene, this.camera);
+    this.draw();
     return true;
+  }
+
+  /** The scene, then the axis gizmo in the bottom-right corner. */
+  private draw(): void {
+    this.renderer.render(this.scene, this.camera);
+    this.gizmo.render(this.renderer, this.camera);
   }
 
   /** Renders now and waits for the GPU to finish; the milliseconds it took (benchmarks). */
   renderTimed(): number {
     const t0 = performance.now();
-    this.renderer.render(this.scene, this.camera);
+    this.draw();
     // Reading a pixel waits for the (GPU process') draw to end; gl.finish() does not.
     const gl = this.renderer.getContext();
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
@@ -154,6 +258,20 @@ export class Viewport {
     return raycaster.ray;
   }
 }
+
+/** The view presets: the direction from the model toward the camera (z is up). Top and
+ * bottom lean a hair toward -y so that "up" on screen stays +y. */
+export const VIEW_DIRECTIONS = {
+  front: new THREE.Vector3(0, -1, 0),
+  back: new THREE.Vector3(0, 1, 0),
+  right: new THREE.Vector3(1, 0, 0),
+  left: new THREE.Vector3(-1, 0, 0),
+  top: new THREE.Vector3(0, -1e-4, 1),
+  bottom: new THREE.Vector3(0, -1e-4, -1),
+  iso: new THREE.Vector3(0.55, -1.2, 0.9),
+} as const;
+export type ViewName = keyof typeof VIEW_DIRECTIONS;
+const ISO_VIEW = VIEW_DIRECTIONS.iso;
 
 export function modelBox(model: Model): THREE.Box3 {
   return pointsBox([model.vertices]);
@@ -244,6 +362,61 @@ export class FrameLines {
       attribute.addUpdateRange(3 * k, 3);
     }
     attribute.needsUpdate = true;
+  }
+}
+
+/** The true boundary curves of the patches (from the server), drawn over the surface; a
+ * selected frame's in the selection colour. */
+export class BoundaryLines {
+  readonly object: THREE.LineSegments;
+  private patches = 0;
+  private perPatch = 0; // line vertices per patch
+
+  constructor(opacity: number) {
+    const material = new THREE.LineBasicMaterial({ vertexColors: true, transparent: true, opacity, depthTest: false });
+    this.object = new THREE.LineSegments(new THREE.BufferGeometry(), material);
+    this.object.renderOrder = 2;
+    this.object.frustumCulled = false;
+  }
+
+  /** Curves as /api/boundaries sends them: [patch][4 sides][samples][xyz]. */
+  set(xyz: Float32Array, samples: number, selected: ReadonlySet<number>): void {
+    const patches = xyz.length / (12 * samples);
+    const perPatch = 4 * (samples - 1) * 2;
+    const positions = new Float32Array(3 * perPatch * patches);
+    let k = 0;
+    for (let p = 0; p < patches; ++p)
+      for (let side = 0; side < 4; ++side) {
+        const base = 3 * ((p * 4 + side) * samples);
+        for (let i = 0; i + 1 < samples; ++i) {
+          positions.set(xyz.subarray(base + 3 * i, base + 3 * i + 6), k);
+          k += 6;
+        }
+      }
+    const g = this.object.geometry;
+    g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    if (this.patches !== patches || this.perPatch !== perPatch)
+      g.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * perPatch * patches), 3));
+    this.patches = patches;
+    this.perPatch = perPatch;
+    this.colour(selected);
+  }
+
+  colour(selected: ReadonlySet<number>): void {
+    const color = this.object.geometry.getAttribute('color') as THREE.BufferAttribute | undefined;
+    if (!color) return;
+    const a = color.array as Float32Array;
+    for (let p = 0; p < this.patches; ++p) {
+      const c = selected.has(p) ? FRAME_SELECTED : FRAME_COLOR;
+      for (let i = p * this.perPatch; i < (p + 1) * this.perPatch; ++i) a.set([c.r, c.g, c.b], 3 * i);
+    }
+    color.needsUpdate = true;
+  }
+
+  clear(): void {
+    this.object.geometry.deleteAttribute('position');
+    this.object.geometry.deleteAttribute('color');
+    this.patches = this.perPatch = 0;
   }
 }
 
@@ -488,9 +661,10 @@ void main() {
 }`;
 
 // Stripes of a striped environment seen in the surface: the reflected view direction's
-// elevation picks black or white, antialiased with fwidth.
+// elevation above the plane normal to `axis` picks black or white, antialiased with fwidth.
 const ZEBRA_FRAGMENT = /* glsl */ `
 uniform float stripes;
+uniform vec3 axis;
 varying vec3 vNormal;
 varying vec3 vWorld;
 void main() {
@@ -498,19 +672,36 @@ void main() {
   vec3 view = normalize(vWorld - cameraPosition);
   if (!gl_FrontFacing) n = -n;
   vec3 r = reflect(view, n);
-  float s = sin(asin(clamp(r.z, -1.0, 1.0)) * stripes);
+  float s = sin(asin(clamp(dot(r, axis), -1.0, 1.0)) * stripes);
   float w = max(fwidth(s), 1e-4);
   float band = clamp(s / (2.0 * w) + 0.5, 0.0, 1.0);
   float shade = 0.75 + 0.25 * abs(dot(n, -view));
   gl_FragColor = vec4(vec3(mix(0.08, 0.97, band) * shade), 1.0);
 }`;
 
-/** The right view: the shaded surface, zebra stripes on demand, frames overlaid. */
+/** Stripes over the half-circle of reflected elevations, by default. */
+export const ZEBRA_DEFAULT_STRIPES = 16;
+
+export type CurvatureMode = 'off' | 'mean' | 'gaussian';
+
+/** The right view: the shaded surface, zebra stripes or curvature colours on demand,
+ * frames overlaid. */
 export class SurfaceView extends Viewport {
-  readonly overlay = new FrameLines(0.55);
+  readonly overlay = new BoundaryLines(0.7);
   readonly mesh: THREE.Mesh;
   private readonly shaded: THREE.Material;
   private readonly zebra: THREE.ShaderMaterial;
+  private readonly coloured: THREE.Material;
+  /** The zebra material (tests read its uniforms). */
+  get zebraMaterial(): THREE.ShaderMaterial {
+    return this.zebra;
+  }
+  private zebraOn = false;
+  private curvature: CurvatureMode = 'off';
+  /** The colour scale's half-range of the curvature shown (legend), 0 when off. */
+  curvatureRange = 0;
+  /** Called after curvature colours are recomputed (the legend). */
+  onCurvature: (mode: CurvatureMode, range: number) => void = () => {};
 
   constructor(container: HTMLElement) {
     super(container);
@@ -524,10 +715,19 @@ export class SurfaceView extends Viewport {
       polygonOffsetUnits: 1,
     });
     this.zebra = new THREE.ShaderMaterial({
-      uniforms: { stripes: { value: 10 } },
+      uniforms: { stripes: { value: ZEBRA_DEFAULT_STRIPES }, axis: { value: new THREE.Vector3(0, 0, 1) } },
       vertexShader: ZEBRA_VERTEX,
       fragmentShader: ZEBRA_FRAGMENT,
       side: THREE.DoubleSide,
+    });
+    this.coloured = new THREE.MeshStandardMaterial({
+      vertexColors: true,
+      roughness: 0.6,
+      metalness: 0,
+      side: THREE.DoubleSide,
+      polygonOffset: true,
+      polygonOffsetFactor: 1,
+      polygonOffsetUnits: 1,
     });
     this.mesh = new THREE.Mesh(new THREE.BufferGeometry(), this.shaded);
     this.mesh.frustumCulled = false;
@@ -543,12 +743,55 @@ export class SurfaceView extends Viewport {
     g.computeBoundingSphere();
     this.mesh.geometry.dispose();
     this.mesh.geometry = g;
+    this.colour();
     this.invalidate();
   }
 
   setZebra(on: boolean): void {
-    this.mesh.material = on ? this.zebra : this.shaded;
+    this.zebraOn = on;
+    this.pickMaterial();
+  }
+
+  /** Stripe count and the axis the environment's stripes run around. */
+  setZebraOptions(stripes: number, axis: THREE.Vector3): void {
+    this.zebra.uniforms.stripes.value = stripes;
+    this.zebra.uniforms.axis.value.copy(axis).normalize();
     this.invalidate();
+  }
+
+  /** Colours the surface by its mean or Gaussian curvature (or not). */
+  setCurvature(mode: CurvatureMode): void {
+    this.curvature = mode;
+    this.colour();
+    this.pickMaterial();
+  }
+
+  private pickMaterial(): void {
+    this.mesh.material = this.zebraOn ? this.zebra : this.curvature !== 'off' ? this.coloured : this.shaded;
+    this.invalidate();
+  }
+
+  /** Recomputes the curvature colours of the whole mesh (when they are shown). */
+  private colour(): void {
+    const g = this.mesh.geometry;
+    const position = g.getAttribute('position') as THREE.BufferAttribute | undefined;
+    if (this.curvature === 'off' || !position || !g.index) {
+      this.curvatureRange = 0;
+      this.onCurvature(this.curvature, 0);
+      return;
+    }
+    const normal = g.getAttribute('normal') as THREE.BufferAttribute;
+    const k = vertexCurvatures(position.array, normal.array, g.index.array);
+    const values = this.curvature === 'mean' ? k.mean : k.gaussian;
+    this.curvatureRange = symmetricRange(values);
+    let color = g.getAttribute('color') as THREE.BufferAttribute | undefined;
+    if (!color || color.count !== position.count) {
+      color = new THREE.BufferAttribute(new Float32Array(3 * position.count), 3);
+      g.setAttribute('color', color);
+    }
+    curvatureColors(values, this.curvatureRange, color.array as Float32Array);
+    color.needsUpdate = true;
+    this.onCurvature(this.curvature, this.curvatureRange);
   }
 
   setOverlay(on: boolean): void {
@@ -568,16 +811,19 @@ export class SurfaceView extends Viewport {
       else attribute.clearUpdateRanges();
       attribute.needsUpdate = true;
     }
+    this.colour(); // all of it: the colour scale may change with the new shape
     this.invalidate();
   }
 
-  moveOverlayVertex(vertex: number, p: Vec3): void {
-    this.overlay.moveVertex(vertex, p);
+  /** The patches' boundary curves (/api/boundaries), or none. */
+  setBoundaries(curves: { xyz: Float32Array; samples: number } | null, selectedFrames: ReadonlySet<number>): void {
+    if (curves) this.overlay.set(curves.xyz, curves.samples, selectedFrames);
+    else this.overlay.clear();
     this.invalidate();
   }
 
-  updateOverlay(model: Model, selectedFrames: ReadonlySet<number>): void {
-    this.overlay.update(model, selectedFrames);
+  selectOverlay(selectedFrames: ReadonlySet<number>): void {
+    this.overlay.colour(selectedFrames);
     this.invalidate();
   }
 }

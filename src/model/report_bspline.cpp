@@ -1,5 +1,5 @@
-// `build`, `sample` and `info` of "bspline-pde" models.
-#include "bspline_commands.hpp"
+// The reports of "bspline-pde" models: `build`'s summary and quality, `info`.
+#include "model/reports.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-namespace pdesurf::cli {
+namespace pdesurf::detail {
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -30,37 +30,20 @@ std::string knotsText(const BSplineSurface& s) {
 
 }  // namespace
 
-std::string bsplineSummary(const SolvedBSplinePde& solved) {
+ModelReport bsplineReport(const SolvedBSplinePde& solved) {
   const BSplineSurface& s = solved.pieces.front();
-  return fmt::format("bspline-pde, {} piece{}, {} x {} control points{}, {}", solved.pieces.size(),
-                     solved.pieces.size() == 1 ? "" : "s", s.net().nu + 1, s.net().nv + 1,
-                     solved.pieces.size() == 1 ? "" : " each", knotsText(s));
+  ModelReport r;
+  r.summary =
+      fmt::format("bspline-pde, {} piece{}, {} x {} control points{}, {}", solved.pieces.size(),
+                  solved.pieces.size() == 1 ? "" : "s", s.net().nu + 1, s.net().nv + 1,
+                  solved.pieces.size() == 1 ? "" : " each", knotsText(s));
+  r.quality = fmt::format("PDE residual {:.3g}", worstResidual(solved));
+  if (solved.c1Gap) r.quality += fmt::format(", C1 gap {:.3g}", *solved.c1Gap);
+  return r;
 }
 
-std::string bsplineQuality(const SolvedBSplinePde& solved) {
-  std::string q = fmt::format("PDE residual {:.3g}", worstResidual(solved));
-  if (solved.c1Gap) q += fmt::format(", C1 gap {:.3g}", *solved.c1Gap);
-  return q;
-}
-
-std::string bsplineSampleJson(const SolvedBSplinePde& solved, std::uint32_t grid) {
-  Json patches = Json::array();
-  for (std::size_t k = 0; k < solved.pieces.size(); ++k) {
-    Json points = Json::array();
-    for (std::uint32_t j = 0; j < grid; ++j)
-      for (std::uint32_t i = 0; i < grid; ++i)
-        points.push_back(pointJson(solved.pieces[k].position(static_cast<double>(i) / (grid - 1),
-                                                             static_cast<double>(j) / (grid - 1))));
-    patches.push_back({{"patch", k},
-                       {"grid", grid},
-                       {"origin", {solved.origin[k][0], solved.origin[k][1]}},
-                       {"points", std::move(points)}});
-  }
-  return Json{{"patches", std::move(patches)}}.dump() + "\n";
-}
-
-std::string bsplineInfoText(const BSplinePdeModel& model, const SolvedBSplinePde& solved,
-                            const std::string& path, bool json) {
+std::string bsplineInfo(const BSplinePdeModel& model, const SolvedBSplinePde& solved,
+                        const std::string& path, bool json) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   std::size_t points = 0;
   for (const BSplineSurface& s : solved.pieces) {
@@ -119,4 +102,4 @@ std::string bsplineInfoText(const BSplinePdeModel& model, const SolvedBSplinePde
   return out;
 }
 
-}  // namespace pdesurf::cli
+}  // namespace pdesurf::detail

@@ -1,0 +1,302 @@
+// pdesurf_accuracy: one ground truth of the accuracy-versus-storage benchmark
+// (docs/accuracy-storage.md, driven by scripts/accuracy). Fits vertex-frame models of growing
+// layouts, picks for each accuracy level the smallest that reaches it, finds the polygon and
+// NURBS peers at that model's RMS (include/pdesurf/peers.hpp), and prints JSON.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "pdesurf/analysis.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/peers.hpp"
+#include "pdesurf/rebuild.hpp"
+#include "pdesurf/section_rebuild.hpp"
+#include "pdesurf/tube_layout.hpp"
+
+namespace pdesurf {
+namespace {
+
+using Json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// Samples per patch side when a vertex-frame model is measured (as `compare` does).
+constexpr std::uint32_t kPatchResolution = 17;
+
+struct Args {
+  std::string mesh, name, layout = "grid", axis = "z", images;
+  std::vector<double> range, near, torus, levels{0.004, 0.002, 0.001};
+  bool track = false;
+  std::uint32_t maxFrames = 400;
+  std::size_t samples = 30000;
+  double budget = 300.0;  ///< seconds of fitting per mesh before the sweep stops
+  bool sections = false;
+};
+
+/// The model without vertices no frame uses (the grid layout's frame centres): the storage
+/// counts what the surface needs.
+VertexFrameModel withoutUnusedVertices(const VertexFrameModel& model) {
+  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> index(model.vertices.size(), kUnused);
+  VertexFrameModel out = model;
+  out.vertices.clear();
+  for (Frame& f : out.frames)
+    for (std::uint32_t& v : f.vertices) {
+      if (index[v] == kUnused) {
+        index[v] = static_cast<std::uint32_t>(out.vertices.size());
+        out.vertices.push_back(model.vertices[v]);
+      }
+      v = index[v];
+    }
+  return out;
+}
+
+/// A torus's R × r quad grid of rows × cols quads, u round the axis, v round the tube, faces
+/// row after row (frame r·cols + c), normals outwards.
+PolygonMesh torusQuads(double major, double minor, std::uint32_t rows, std::uint32_t cols) {
+  PolygonMesh q;
+  for (std::uint32_t j = 0; j < rows; ++j)
+    for (std::uint32_t i = 0; i < cols; ++i) {
+      const double t = 2 * M_PI * i / cols, p = 2 * M_PI * j / rows;
+      q.points.emplace_back((major + minor * std::cos(p)) * std::cos(t),
+                            (major + minor * std::cos(p)) * std::sin(t), minor * std::sin(p));
+    }
+  auto at = [&](std::uint32_t i, std::uint32_t j) { return (j % rows) * cols + i % cols; };
+  for (std::uint32_t j = 0; j < rows; ++j)
+    for (std::uint32_t i = 0; i < cols; ++i)
+      q.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+  return q;
+}
+
+struct Layout {
+  VertexFrameModel model;
+  LayoutGrid grid;
+  std::string text;  ///< "6 × 6 grid"
+};
+
+struct Candidate {
+  Layout layout;
+  VertexFrameModel fitted;
+  double rms = 0.0, fitMs = 0.0;
+  std::size_t bytes = 0;
+  std::uint32_t iterations = 0;
+};
+
+Json pdeJson(const Candidate& c) {
+  return {{"layout", c.layout.text},
+          {"frames", c.fitted.frames.size()},
+          {"vertices", c.fitted.vertices.size()},
+          {"rms", c.rms},
+          {"bytes", c.bytes},
+          {"fit_ms", c.fitMs},
+          {"iterations", c.iterations}};
+}
+
+int run(const Args& args) {
+  const Mesh mesh = readMesh(args.mesh);
+  SliceOptions slice;
+  slice.axis = *parseAxis(args.axis);
+  if (!args.range.empty()) slice.range = {args.range[0], args.range[1]};
+  if (!args.near.empty()) slice.near = Vec3(args.near[0], args.near[1], args.near[2]);
+  slice.track = args.track;
+  DistanceOptions distance;
+  distance.samples = args.samples;
+
+  // The truth: the mesh, or (tubes) the part of it between the end planes.
+  Mesh truth = mesh;
+  double tubeAspect = 1.0;  // perimeter / length: sectors per ring for square frames
+  if (args.layout == "tube") {
+    const TubeLayout t = tubeLayout(mesh, {1, 4, slice}, args.mesh);
+    truth = t.part;
+    double perimeter = 0.0;
+    for (const MeshSection& s : t.sections)
+      perimeter += s.length / static_cast<double>(t.sections.size());
+    tubeAspect = perimeter / std::abs(t.sections.back().coordinate - t.sections.front().coordinate);
+  }
+  auto makeLayout = [&](std::uint32_t n) -> std::optional<Layout> {
+    Layout l;
+    if (args.layout == "grid") {
+      l.model = gridLayout(truth, {n, n}, args.mesh);
+      l.grid = {n, n, false, false};
+      l.text = fmt::format("{} × {} grid", n, n);
+    } else if (args.layout == "tube") {
+      const auto s = std::max(3u, static_cast<std::uint32_t>(std::lround(n * tubeAspect)));
+      l.model = tubeLayout(mesh, {n, s, slice}, args.mesh).model;
+      l.grid = {s, n, true, false};
+      l.text = fmt::format("{} ring{} × {} sectors", n, n == 1 ? "" : "s", s);
+    } else {
+      const auto cols =
+          std::max(3u, static_cast<std::uint32_t>(std::lround(n * args.torus[0] / args.torus[1])));
+      l.model = quadLayout(torusQuads(args.torus[0], args.torus[1], n, cols), "torus");
+      l.grid = {cols, n, true, true};
+      l.text = fmt::format("{} × {} torus grid", n, cols);
+    }
+    if (l.model.frames.size() > args.maxFrames) return std::nullopt;
+    return l;
+  };
+
+  // The sweep: growing layouts until the finest level is reached, or frames or time run out.
+  std::vector<Candidate> sweep;
+  double spent = 0.0;
+  const double finest = *std::min_element(args.levels.begin(), args.levels.end());
+  for (std::uint32_t n : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 10u, 12u, 14u, 16u, 20u, 24u, 28u, 32u}) {
+    // A grid needs 2 frames a side to bend; a torus 3 rows (2 would repeat their edges).
+    if ((args.layout == "grid" && n < 2) || (args.layout == "torus" && n < 3)) continue;
+    auto layout = makeLayout(n);
+    if (!layout) break;
+    Candidate c;
+    c.layout = std::move(*layout);
+    const auto t0 = Clock::now();
+    const FitResult fit = fitVertexFrames(c.layout.model, truth);
+    c.fitMs = msSince(t0);
+    c.iterations = static_cast<std::uint32_t>(fit.iterations.size() - 1);
+    c.fitted = withoutUnusedVertices(fit.model);
+    c.fitted.name = args.name;
+    c.rms = accuracyRms(tessellate(solve(c.fitted), {kPatchResolution}), truth, distance);
+    c.bytes = storageBytes(c.fitted);
+    spent += c.fitMs / 1000.0;
+    std::cerr << fmt::format("{}: {}: RMS {:.4f} %, {} bytes, fit {:.0f} ms\n", args.name,
+                             c.layout.text, 100 * c.rms, c.bytes, c.fitMs);
+    sweep.push_back(std::move(c));
+    if (sweep.back().rms <= finest || spent > args.budget) break;
+  }
+
+  // The cross-section model (tubes): growing section counts, 8 modes.
+  std::vector<Json> sectionSweep;
+  if (args.sections)
+    for (std::uint32_t k : {5u, 7u, 9u, 13u, 17u, 25u, 33u, 49u}) {
+      SectionRebuildOptions o;
+      o.slice = slice;
+      o.slice.count = k;
+      if (!o.slice.range) break;
+      try {
+        const SectionRebuild r = rebuildFromSections(mesh, o);
+        SpectralTessellateOptions t;
+        t.uResolution = std::max<std::uint32_t>(3, 256 / (k - 1) + 1);
+        t.vResolution = 256;
+        sectionSweep.push_back({{"sections", k},
+                                {"modes", o.modes},
+                                {"rms", accuracyRms(tessellate(r.chain, t), truth, distance)},
+                                {"bytes", storageBytes(r.model)}});
+      } catch (const std::exception& e) {
+        std::cerr << fmt::format("{}: {} sections: {}\n", args.name, k, e.what());
+      }
+    }
+
+  Json out = {{"name", args.name},
+              {"mesh", args.mesh},
+              {"layout", args.layout},
+              {"truth",
+               {{"vertices", truth.vertexCount()},
+                {"triangles", truth.triangleCount()},
+                {"bytes", storageBytes(truth)}}},
+              {"samples", args.samples},
+              {"sweep", Json::array()},
+              {"sections_sweep", sectionSweep},
+              {"levels", Json::array()}};
+  for (const Candidate& c : sweep) out["sweep"].push_back(pdeJson(c));
+  for (double level : args.levels) {
+    // The smallest layout that reaches the level, else the best reached.
+    const Candidate* chosen = nullptr;
+    for (const Candidate& c : sweep)
+      if (c.rms <= level) {
+        chosen = &c;
+        break;
+      }
+    const bool reached = chosen != nullptr;
+    if (!chosen)
+      chosen = &*std::min_element(sweep.begin(), sweep.end(),
+                                  [](auto& a, auto& b) { return a.rms < b.rms; });
+    const double target = chosen->rms;
+    const PolygonPeer polygon = simplifiedPeer(truth, target, distance);
+    const auto samples = layoutSamples(solve(chosen->fitted), chosen->layout.grid, truth,
+                                       std::max<std::size_t>(args.samples, 20000));
+    const NurbsPeer nurbs = bsplinePeer(samples, chosen->layout.grid, truth, target, distance);
+    Json row = {{"level", level},
+                {"reached", reached},
+                {"pde", pdeJson(*chosen)},
+                {"polygon",
+                 {{"vertices", polygon.mesh.vertexCount()},
+                  {"triangles", polygon.mesh.triangleCount()},
+                  {"rms", polygon.rms},
+                  {"bytes", polygon.bytes},
+                  {"reached", polygon.reached},
+                  {"coarser_rms", polygon.coarserRms},
+                  {"trials", polygon.trials}}},
+                {"nurbs",
+                 {{"control_points", nurbs.surface.control.size()},
+                  {"net", fmt::format("{} × {}", nurbs.surface.nu, nurbs.surface.nv)},
+                  {"rms", nurbs.rms},
+                  {"bytes", nurbs.bytes},
+                  {"reached", nurbs.reached},
+                  {"coarser_rms", nurbs.coarserRms},
+                  {"trials", nurbs.trials}}}};
+    for (const Json& s : sectionSweep)
+      if (s["rms"].get<double>() <= level) {
+        row["sections"] = s;
+        break;
+      }
+    out["levels"].push_back(row);
+    if (!args.images.empty() && level == args.levels[args.levels.size() / 2]) {
+      std::filesystem::create_directories(args.images);
+      writeMesh(tessellate(solve(chosen->fitted), {kPatchResolution}),
+                args.images + "/" + args.name + "-pde.obj");
+      writeMesh(truth, args.images + "/" + args.name + "-truth.obj");
+    }
+  }
+  std::cout << out.dump(1) << '\n';
+  return 0;
+}
+
+}  // namespace
+}  // namespace pdesurf
+
+int main(int argc, char** argv) {
+  pdesurf::Args args;
+  CLI::App app{
+      "One ground truth of the accuracy-versus-storage benchmark: vertex-frame models of "
+      "growing layouts, and the polygon and NURBS peers at each level's RMS, as JSON "
+      "(scripts/accuracy runs it for every mesh)"};
+  app.add_option("mesh", args.mesh, "the ground truth (.off .obj .ply .stl)")->required();
+  app.add_option("--name", args.name, "its name in the table")->required();
+  app.add_option("--layout", args.layout,
+                 "grid (a disk), tube (a part by --axis --range --near), torus")
+      ->check(CLI::IsMember({"grid", "tube", "torus"}));
+  app.add_option("--axis", args.axis, "tube: the slicing axis")
+      ->check(CLI::IsMember({"x", "y", "z"}));
+  app.add_option("--range", args.range, "tube: the end planes")->expected(2);
+  app.add_option("--near", args.near, "tube: the loop nearest this point")->expected(3);
+  app.add_flag("--track", args.track, "tube: follow the part from plane to plane");
+  app.add_option("--torus", args.torus, "torus: its radii R r (the layout is a quad grid on it)")
+      ->expected(2);
+  app.add_option("--levels", args.levels, "accuracy levels (RMS / diagonal)")->expected(1, 10);
+  app.add_option("--max-frames", args.maxFrames, "largest layout fitted")->capture_default_str();
+  app.add_option("--samples", args.samples, "face samples a mesh for the distances")
+      ->capture_default_str();
+  app.add_option("--budget", args.budget, "seconds of fitting before the sweep stops")
+      ->capture_default_str();
+  app.add_flag("--sections", args.sections, "tube: also the cross-section model (8 modes)");
+  app.add_option("--images", args.images, "write the 0.2 % model and its truth as OBJ here");
+  CLI11_PARSE(app, argc, argv);
+  if (args.layout == "torus" && args.torus.size() != 2) {
+    std::cerr << "pdesurf_accuracy: --layout torus needs --torus R r\n";
+    return 2;
+  }
+  try {
+    return pdesurf::run(args);
+  } catch (const std::exception& e) {
+    std::cerr << "pdesurf_accuracy: " << args.mesh << ": " << e.what() << '\n';
+    return 1;
+  }
+}

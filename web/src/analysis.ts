@@ -1,0 +1,52 @@
+// Surface analysis in the right view: zebra stripes with their density and direction, mean
+// or Gaussian curvature colours with a legend.
+import * as THREE from 'three';
+import { $ } from './dom';
+import type { CurvatureMode } from './scene';
+import type { Studio } from './studio';
+
+const AXIS: Record<string, THREE.Vector3> = {
+  x: new THREE.Vector3(1, 0, 0),
+  y: new THREE.Vector3(0, 1, 0),
+  z: new THREE.Vector3(0, 0, 1),
+};
+
+/** A value for the legend: 3 significant digits. */
+const legendNumber = (x: number) => (x === 0 ? '0' : Math.abs(x) >= 1e-2 && Math.abs(x) < 1e3 ? String(+x.toPrecision(3)) : x.toExponential(1));
+
+export function mountAnalysis(studio: Studio): void {
+  const view = studio.surfaceView;
+  const zebra = $<HTMLInputElement>('zebra');
+  const density = $<HTMLInputElement>('zebra-density');
+  const direction = $<HTMLSelectElement>('zebra-direction');
+  const curvature = $<HTMLSelectElement>('curvature');
+  const applyZebra = () => view.setZebraOptions(Number(density.value), AXIS[direction.value]);
+  zebra.addEventListener('change', () => {
+    $('zebra-options').hidden = !zebra.checked;
+    view.setZebra(zebra.checked);
+    if (zebra.checked && curvature.value !== 'off') {
+      curvature.value = 'off'; // one colouring at a time
+      view.setCurvature('off');
+    }
+  });
+  density.addEventListener('input', applyZebra);
+  direction.addEventListener('change', applyZebra);
+  applyZebra();
+
+  view.onCurvature = (mode: CurvatureMode, range: number) => {
+    $('curvature-legend').hidden = mode === 'off';
+    if (mode === 'off') return;
+    // Gaussian curvature is 1/length²: its legend says so.
+    $('legend-title').textContent = mode === 'mean' ? 'mean curvature H (1/length)' : 'Gaussian curvature K (1/length²)';
+    $('legend-min').textContent = `≤ ${legendNumber(-range)}`;
+    $('legend-max').textContent = `≥ ${legendNumber(range)}`;
+  };
+  curvature.addEventListener('change', () => {
+    if (curvature.value !== 'off' && zebra.checked) {
+      zebra.checked = false;
+      $('zebra-options').hidden = true;
+      view.setZebra(false);
+    }
+    view.setCurvature(curvature.value as CurvatureMode);
+  });
+}

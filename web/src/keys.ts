@@ -1,0 +1,108 @@
+// Keyboard shortcuts, and the help panel (?) that lists them: both from SHORTCUTS, so the
+// help never disagrees with the keys.
+import { $ } from './dom';
+import type { Studio } from './studio';
+import type { ViewActions } from './views';
+
+interface Shortcut {
+  /** As shown in the help ("Ctrl+Z"). */
+  keys: string;
+  what: string;
+  /** Whether a keydown is this shortcut. */
+  matches(ev: KeyboardEvent): boolean;
+  run(): void;
+}
+
+const ctrl = (ev: KeyboardEvent) => ev.ctrlKey || ev.metaKey;
+const plain = (key: string) => (ev: KeyboardEvent) => !ctrl(ev) && !ev.altKey && ev.key.toLowerCase() === key;
+
+/** Whether a key typed into this element is text (a shortcut must not take it). */
+function typing(target: EventTarget | null): boolean {
+  if (target instanceof HTMLInputElement) return ['text', 'number', 'search'].includes(target.type);
+  return target instanceof HTMLTextAreaElement || target instanceof HTMLSelectElement;
+}
+
+export function mountKeys(studio: Studio, views: ViewActions): void {
+  const { store } = studio;
+  const click = (id: string) => () => $<HTMLButtonElement>(id).click();
+  const toggle = (id: string) => () => {
+    const box = $<HTMLInputElement>(id);
+    box.checked = !box.checked;
+    box.dispatchEvent(new Event('change'));
+  };
+  const help = $('help');
+  const showHelp = (on: boolean) => {
+    help.hidden = !on;
+    $('help-button').setAttribute('aria-pressed', String(on));
+  };
+
+  const shortcuts: Shortcut[] = [
+    { keys: 'Ctrl+Z', what: 'Undo', matches: (e) => ctrl(e) && !e.shiftKey && e.key.toLowerCase() === 'z', run: click('undo') },
+    { keys: 'Ctrl+Shift+Z, Ctrl+Y', what: 'Redo', matches: (e) => ctrl(e) && ((e.shiftKey && e.key.toLowerCase() === 'z') || e.key.toLowerCase() === 'y'), run: click('redo') },
+    { keys: 'Ctrl+S', what: 'Save', matches: (e) => ctrl(e) && e.key.toLowerCase() === 's', run: click('save') },
+    { keys: 'Escape', what: 'Close this help, else clear the selection', matches: (e) => e.key === 'Escape', run: () => {
+      if (!help.hidden) return showHelp(false);
+      store.update(['selection', 'forces'], (s) => {
+        s.selectedVertex = null;
+        s.selectedFrames = new Set();
+        s.selectedForce = 0;
+      });
+    } },
+    { keys: 'Delete', what: "Remove the selected frame's selected force", matches: (e) => e.key === 'Delete' || e.key === 'Backspace', run: () => {
+      const remove = document.querySelector<HTMLButtonElement>('.force.selected [data-testid$="-remove"]');
+      if (remove) remove.click();
+      else studio.say('Delete: select a frame and one of its forces first');
+    } },
+    { keys: 'F', what: 'Fit the selection (all when nothing is selected)', matches: (e) => plain('f')(e) && !e.shiftKey, run: () => views.fitSelection() },
+    { keys: 'Shift+F, Home', what: 'Fit all', matches: (e) => (plain('f')(e) && e.shiftKey) || e.key === 'Home', run: () => views.fitAll() },
+    { keys: '1', what: 'Front view (looking along +y)', matches: plain('1'), run: () => views.view('front') },
+    { keys: '2', what: 'Back view', matches: plain('2'), run: () => views.view('back') },
+    { keys: '3', what: 'Right view (looking along -x)', matches: plain('3'), run: () => views.view('right') },
+    { keys: '4', what: 'Left view', matches: plain('4'), run: () => views.view('left') },
+    { keys: '5', what: 'Top view (looking down z)', matches: plain('5'), run: () => views.view('top') },
+    { keys: '6', what: 'Bottom view', matches: plain('6'), run: () => views.view('bottom') },
+    { keys: '0', what: 'Three-quarter view', matches: plain('0'), run: () => views.view('iso') },
+    { keys: 'K', what: 'Link the two cameras (on/off)', matches: plain('k'), run: () => views.toggleLink() },
+    { keys: 'Z', what: 'Zebra stripes (on/off)', matches: (e) => plain('z')(e) && !e.shiftKey, run: toggle('zebra') },
+    { keys: 'C', what: 'Curvature colours: off, mean, Gaussian', matches: plain('c'), run: () => {
+      const select = $<HTMLSelectElement>('curvature');
+      select.selectedIndex = (select.selectedIndex + 1) % select.options.length;
+      select.dispatchEvent(new Event('change'));
+    } },
+    { keys: 'B', what: 'Frame boundaries over the surface (on/off)', matches: plain('b'), run: toggle('overlay') },
+    { keys: 'L', what: 'Live surface (on/off)', matches: plain('l'), run: toggle('live') },
+    { keys: '?', what: 'This help (on/off)', matches: (e) => e.key === '?', run: () => showHelp(help.hidden) },
+  ];
+
+  // The help: one row per shortcut, and what the mouse does.
+  const table = $('help-keys');
+  for (const s of shortcuts) {
+    const row = document.createElement('tr');
+    const k = document.createElement('td');
+    for (const [i, part] of s.keys.split(', ').entries()) {
+      if (i) k.append(' or ');
+      const kbd = document.createElement('kbd');
+      kbd.textContent = part;
+      k.append(kbd);
+    }
+    const w = document.createElement('td');
+    w.textContent = s.what;
+    row.append(k, w);
+    table.append(row);
+  }
+  $('help-button').addEventListener('click', () => showHelp(help.hidden));
+  $('help-close').addEventListener('click', () => showHelp(false));
+
+  document.addEventListener('keydown', (ev) => {
+    if (ev.defaultPrevented || $<HTMLDialogElement>('unsaved-dialog').open) return;
+    // In a text or number box keys are text, except Escape (leave the box).
+    if (typing(ev.target)) {
+      if (ev.key === 'Escape') (ev.target as HTMLElement).blur();
+      return;
+    }
+    const shortcut = shortcuts.find((s) => s.matches(ev));
+    if (!shortcut) return;
+    ev.preventDefault();
+    shortcut.run();
+  });
+}

@@ -1,0 +1,106 @@
+// The page's state and the one way to change it (as the three.js editor's Editor and its
+// signals): every write goes through Store.update, which names the topics it touched; the renderers subscribed to those topics run once, together, in the
+// next microtask. Nothing else writes the state or calls a renderer.
+import type { MeshData, Model, ModelView, Status } from './api';
+
+export interface State {
+  /** The model file, relative to the studio's root. */
+  path: string;
+  /** The editable (vertex-frame) model: the page's copy, updated as edits are sent. */
+  model: Model | null;
+  /** The type of a view-only model (spectral, cross-sections, bspline-pde), or ''. */
+  viewOnly: string;
+  /** A view-only model's curves and spines. */
+  view: ModelView | null;
+  status: Status | null;
+  /** An autosave differs from the file (offer to recover it). */
+  recovery: boolean;
+  selectedVertex: number | null;
+  selectedFrames: Set<number>;
+  /** The selected force of a single selected frame (index in its forces). */
+  selectedForce: number;
+  mesh: MeshData | null;
+  /** Live is off and the model changed since the last mesh. */
+  meshStale: boolean;
+  /** Meshes that came as deltas (tests). */
+  meshDeltas: number;
+  error: string;
+  message: string;
+}
+
+/** What a change touched: the renderers subscribe to these.
+ * - model: the model was replaced or edited as a whole (rebuild views and panel)
+ * - vertex: the selected vertex moved (a drag, a typed coordinate)
+ * - selection: the selected vertex, frames or force
+ * - forces: the forces of the selection (the force list)
+ * - mesh: a new surface mesh (or its staleness)
+ * - status: revision, undo depth, dirty, path, recovery, error, message */
+export type Topic = 'model' | 'vertex' | 'selection' | 'forces' | 'mesh' | 'status';
+
+export type Listener = (state: Readonly<State>, topics: ReadonlySet<Topic>) => void;
+
+export function initialState(): State {
+  return {
+    path: '',
+    model: null,
+    viewOnly: '',
+    view: null,
+    status: null,
+    recovery: false,
+    selectedVertex: null,
+    selectedFrames: new Set(),
+    selectedForce: 0,
+    mesh: null,
+    meshStale: false,
+    meshDeltas: 0,
+    error: '',
+    message: '',
+  };
+}
+
+export class Store {
+  private readonly current: State;
+  private readonly listeners: { topics: ReadonlySet<Topic>; fn: Listener }[] = [];
+  private pending = new Set<Topic>();
+  private scheduled = false;
+
+  constructor(state: State = initialState()) {
+    this.current = state;
+  }
+
+  /** The state, to read (write it through update). */
+  get state(): Readonly<State> {
+    return this.current;
+  }
+
+  /** Calls `fn` after every change that touched one of `topics` (once per batch). */
+  subscribe(topics: Topic[], fn: Listener): () => void {
+    const entry = { topics: new Set(topics), fn };
+    this.listeners.push(entry);
+    return () => {
+      const i = this.listeners.indexOf(entry);
+      if (i >= 0) this.listeners.splice(i, 1);
+    };
+  }
+
+  /** Changes the state and schedules the renderers of `topics`. An empty `topics` is a
+   * change nothing needs to redraw (the control that made it already shows it). */
+  update(topics: Topic[], change: (state: State) => void): void {
+    change(this.current);
+    for (const t of topics) this.pending.add(t);
+    if (topics.length && !this.scheduled) {
+      this.scheduled = true;
+      queueMicrotask(() => this.flush());
+    }
+  }
+
+  /** Runs the renderers of the topics changed since the last flush, now. */
+  flush(): void {
+    this.scheduled = false;
+    if (!this.pending.size) return;
+    const topics = this.pending;
+    this.pending = new Set();
+    for (const { topics: wanted, fn } of [...this.listeners])
+      if ([...wanted].some((t) => topics.has(t))) fn(this.current, topics);
+  }
+}

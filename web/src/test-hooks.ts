@@ -1,0 +1,68 @@
+// Hooks for the browser tests and the latency benchmark (e2e/, bench/studio/latency.mjs):
+// where things are on screen, edits through the page, the page's state. Loaded only when
+// a test drives the page (navigator.webdriver) or with ?test=1 (main.ts).
+import { api } from './api';
+import type { Edit } from './api';
+import { positionsBox } from './transform';
+import type { Studio } from './studio';
+
+declare global {
+  interface Window {
+    __studio: unknown;
+  }
+}
+
+export function installTestHooks(studio: Studio): void {
+  const { store, frameView, surfaceView, pump } = studio;
+  window.__studio = {
+    vertexScreen: (i: number) => frameView.vertexScreen(i),
+    frameScreen: (f: number) => frameView.frameScreen(f),
+    edit: (edit: Edit) => pump.once('test', () => edit).then(() => store.state.error),
+    idle: () => pump.idle(),
+    /** Whether the page's mesh (updated by deltas) equals the whole mesh the server makes now. */
+    meshMatchesServer: async () => {
+      const m = store.state.mesh;
+      if (!m) return false;
+      const full = await api.mesh({ resolution: m.resolution });
+      if (full.kind !== 'full' || full.revision !== m.revision) return false;
+      const same = (a: ArrayLike<number>, b: ArrayLike<number>) =>
+        a.length === b.length && Array.prototype.every.call(a, (x: number, i: number) => x === b[i]);
+      return same(full.positions, m.positions) && same(full.normals, m.normals) && same(full.indices, m.indices);
+    },
+    renderTimes: (n: number) => ({
+      frames: Array.from({ length: n }, () => frameView.renderTimed()),
+      surface: Array.from({ length: n }, () => surfaceView.renderTimed()),
+    }),
+    state: () => ({
+      revision: store.state.status?.revision,
+      mesh: store.state.mesh?.revision,
+      resolution: store.state.mesh?.resolution,
+      error: store.state.error,
+      meshDeltas: store.state.meshDeltas,
+    }),
+    /** The bounding box of the page's surface mesh. */
+    meshBox: () => positionsBox(store.state.mesh?.positions),
+    /** Each view's camera: the direction from its target toward it, and the target. */
+    cameras: () =>
+      Object.fromEntries(
+        (['frame', 'surface'] as const).map((name) => {
+          const v = name === 'frame' ? frameView : surfaceView;
+          return [name, { direction: v.viewDirection().toArray(), target: v.controls.target.toArray(), position: v.camera.position.toArray() }];
+        }),
+      ),
+    /** What the surface view shows: its material, zebra settings, curvature scale. */
+    analysis: () => ({
+      material: surfaceView.mesh.material === surfaceView.zebraMaterial ? 'zebra' : (surfaceView.mesh.material as { vertexColors?: boolean }).vertexColors ? 'curvature' : 'shaded',
+      stripes: surfaceView.zebraMaterial.uniforms.stripes.value as number,
+      axis: (surfaceView.zebraMaterial.uniforms.axis.value as { toArray(): number[] }).toArray(),
+      curvatureRange: surfaceView.curvatureRange,
+    }),
+    /** The surface overlay's line vertices (the boundary curves), flat xyz. */
+    overlayPoints: () => {
+      const p = surfaceView.overlay.object.geometry.getAttribute('position');
+      return p ? Array.from(p.array as Float32Array) : [];
+    },
+    /** The page's surface mesh positions, flat xyz. */
+    meshPositions: () => Array.from(store.state.mesh?.positions ?? []),
+  };
+}
