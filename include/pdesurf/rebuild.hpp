@@ -80,8 +80,10 @@ struct FitOptions {
   /// Stops when an iteration lowers the RMS by less than this fraction of it.
   double tolerance = 1e-3;
   /// Surface samples per patch side (≥ 3), a grid including the patch's borders; 0 chooses
-  /// as many as make the surface samples about as many as the mesh's vertices, from 4 to 9.
-  std::uint32_t samplesPerSide = 0;
+  /// as many as make the surface samples about as many as the mesh's vertices, from 4 to 9
+  /// (faster on large layouts, coarser: fewer than 9 samples a side raise the RMS the fit
+  /// reaches on small ones, e.g. the elephant's leg as 4 × 9 frames).
+  std::uint32_t samplesPerSide = 9;
   /// Weight of the smoothness term: the mean squared umbrella Laplacian of the vertex
   /// positions over the frame graph (each vertex against the mean of the vertices next to
   /// it along frame sides), against the mean squared distances (docs/rebuild.md).

@@ -51,6 +51,12 @@ constexpr int kProjectionSteps = 4;
 /// the boundary: its pair counts the whole distance, not the normal part alone.
 constexpr double kOnBoundary = 1e-9;
 
+/// A foot point whose smallest barycentric coordinate is below this lies on an edge or a
+/// corner of its triangle (where the distance's direction, not the triangle's normal, is
+/// the pair's normal); a sample nearer than this (relative to the diagonal) keeps the
+/// triangle's normal.
+constexpr double kOnEdge = 1e-9;
+
 /// The tangential weight adapts as a trust region does: divided by 10 after a full step,
 /// multiplied by 10 (up to 1, plain distances) after a shortened one, never below this
 /// (the smoothness term keeps the system well posed down there).
@@ -241,7 +247,10 @@ class Fitter {
                                       : std::min(1.0, 10.0 * tangentialWeight_);
       report(result, {it, current.measure, step});
       const double decrease = (rms - current.measure.rms()) / rms;
-      if (decrease < options_.tolerance) {
+      // A shortened step says the linearisation was poor, not that the fit is done: the
+      // tangential weight has risen, so the next step is better damped. Only a full step (or
+      // one at plain distances, which cannot be damped more) that gains little ends the fit.
+      if (decrease < options_.tolerance && (step == 1.0 || tangentialWeight_ >= 1.0)) {
         result.stopReason = fmt::format(
             "converged: the last iteration lowered the RMS by {:.3g}%, less than the tolerance "
             "{:.3g}%",
@@ -399,13 +408,17 @@ class Fitter {
                     target_.normals[t],
                     gp.weight * length,
                     static_cast<std::int64_t>(i)};
-          if (target_.boundary[t] != 0) {
-            const Triangle& tri = target_.triangles[t];
-            const Eigen::Vector3d l =
-                barycentric(foot, toVec(tri[0]), toVec(tri[1]), toVec(tri[2]));
-            for (int c = 0; c < 3; ++c)
-              if ((target_.boundary[t] >> c & 1u) && l[c] < kOnBoundary) pair.normal.setZero();
-          }
+          const Triangle& tri = target_.triangles[t];
+          const Eigen::Vector3d l = barycentric(foot, toVec(tri[0]), toVec(tri[1]), toVec(tri[2]));
+          // A foot on an edge or a corner of the triangle is as near to its neighbours: the
+          // triangle's own normal is one of several, chosen by how the tree breaks the tie.
+          // The direction from the foot to the sample is the distance's gradient there, the
+          // same whichever triangle the tree returns.
+          const Vec3 away = sp.p - foot;
+          if (l.minCoeff() < kOnEdge && away.norm() > kOnEdge * target_.diagonal)
+            pair.normal = away.normalized();
+          for (int c = 0; c < 3; ++c)
+            if ((target_.boundary[t] >> c & 1u) && l[c] < kOnBoundary) pair.normal.setZero();
           distances[i] = (foot - sp.p).norm();
           e.pairs[i] = pair;
         }
