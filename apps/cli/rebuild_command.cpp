@@ -110,9 +110,14 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
                   "mean squared distances")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
-  cmd->add_option("--fit-samples", samples, "vertex-frames: surface samples per patch side")
-      ->check(CLI::Range(3u, 65u))
+  cmd->add_option("--fit-samples", samples,
+                  "vertex-frames: surface samples per patch side (3 to 65; 0: about as many "
+                  "surface samples as mesh vertices, 4 to 9 a side)")
+      ->check(CLI::Range(0u, 65u) & !CLI::Range(1u, 2u))
       ->capture_default_str();
+  cmd->add_flag("--prevent-folds", preventFolds,
+                "vertex-frames: refuse steps that fold more of the surface over (fewer folds, "
+                "a higher RMS)");
 }
 
 CLI::App* RebuildCommand::add(CLI::App& app) {
@@ -337,6 +342,7 @@ int RebuildCommand::runVertexFrames() const {
   options.tolerance = args.tolerance;
   options.smoothness = args.smoothness;
   options.samplesPerSide = args.samples;
+  options.preventFolds = args.preventFolds;
   ProgressBar bar(args.iterations, !quiet);
   options.onIteration = [&](const FitIteration& it) {
     bar.update(it.iteration, it.measure.rms());
@@ -344,10 +350,11 @@ int RebuildCommand::runVertexFrames() const {
     const FitMeasure& m = it.measure;
     fmt::print(
         "iteration {:>3}{}: RMS {}  surface -> mesh RMS {} mean {} max {}  mesh -> surface RMS "
-        "{} mean {} max {}\n",
+        "{} mean {} max {}  folded {}/{}\n",
         it.iteration, it.iteration == 0 ? " (layout)" : fmt::format(" (step {:g})", it.step),
         percent(m.rms()), percent(m.rmsToMesh), percent(m.meanToMesh), percent(m.maxToMesh),
-        percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel));
+        percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel), m.foldedSamples,
+        m.samples);
   };
   t0 = Clock::now();
   FitResult fitted;

@@ -21,7 +21,8 @@ struct VertexFrameRebuildArgs {
   std::uint32_t iterations = 30;
   double tolerance = 1e-3;
   double smoothness = 1e-5;
-  std::uint32_t samples = 9;  ///< surface samples per patch side
+  std::uint32_t samples = 9;  ///< surface samples per patch side (0: automatic)
+  bool preventFolds = false;  ///< refuse steps that fold more of the surface over
 
   void add(CLI::App* cmd);
 };

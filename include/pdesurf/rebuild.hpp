@@ -61,6 +61,10 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
 struct FitMeasure {
   double rmsToMesh = 0.0, meanToMesh = 0.0, maxToMesh = 0.0;     ///< surface samples -> mesh
   double rmsToModel = 0.0, meanToModel = 0.0, maxToModel = 0.0;  ///< mesh vertices -> surface
+  /// Surface samples whose patch normal disagrees (cos < 0) with the mesh's normal at their
+  /// closest point, against the orientation most of the samples agree on: folds.
+  std::uint32_t foldedSamples = 0;
+  std::uint32_t samples = 0;  ///< surface samples in all
   /// sqrt((rmsToMesh² + rmsToModel²) / 2): the quantity each step may not increase.
   double rms() const;
 };
@@ -75,7 +79,10 @@ struct FitOptions {
   std::uint32_t maxIterations = 30;
   /// Stops when an iteration lowers the RMS by less than this fraction of it.
   double tolerance = 1e-3;
-  /// Surface samples per patch side (≥ 3), a grid including the patch's borders.
+  /// Surface samples per patch side (≥ 3), a grid including the patch's borders; 0 chooses
+  /// as many as make the surface samples about as many as the mesh's vertices, from 4 to 9
+  /// (faster on large layouts, coarser: fewer than 9 samples a side raise the RMS the fit
+  /// reaches on small ones, e.g. the elephant's leg as 4 × 9 frames).
   std::uint32_t samplesPerSide = 9;
   /// Weight of the smoothness term: the mean squared umbrella Laplacian of the vertex
   /// positions over the frame graph (each vertex against the mean of the vertices next to
@@ -89,6 +96,11 @@ struct FitOptions {
   double tangentialWeight = 0.1;
   /// Halvings of a step the line search tries before it gives up.
   std::uint32_t maxHalvings = 8;
+  /// Refuses steps that fold more surface samples over (FitMeasure::foldedSamples) than the
+  /// current surface has (or 0.5 % of the samples, if more): where a step would, the
+  /// vertices of the frames that fold more stay and the rest of the step is tried again.
+  /// Off by default: it costs RMS (docs/rebuild.md, Limits).
+  bool preventFolds = false;
   /// Called with the start and after every accepted iteration (progress reports).
   std::function<void(const FitIteration&)> onIteration;
 };
