@@ -750,17 +750,16 @@ class StudioServer::Impl {
 
     // The patch (frame) of every triangle of the mesh at `resolution` (uint32 each, as
     // GET /api/mesh lays it out for this revision): the page picks frames on the surface.
-    server_.Get("/api/patch-ids",
-                guarded([this](const httplib::Request& req, httplib::Response& res) {
-                  requireEditable();
-                  const MeshRequest request = meshRequest(req);
-                  const Mesh mesh =
-                      tessellate(session_->solved(request.options), {request.resolution});
-                  res.set_content(std::string(reinterpret_cast<const char*>(mesh.patchIds.data()),
-                                              4 * mesh.patchIds.size()),
-                                  "application/octet-stream");
-                  res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
-                }));
+    server_.Get(
+        "/api/patch-ids", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          requireEditable();
+          const MeshRequest request = meshRequest(req);
+          const Mesh mesh = tessellate(session_->solved(request.options), {request.resolution});
+          res.set_content(std::string(reinterpret_cast<const char*>(mesh.patchIds.data()),
+                                      4 * mesh.patchIds.size()),
+                          "application/octet-stream");
+          res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+        }));
     // The analytic mean and Gaussian curvature at every vertex of the mesh GET /api/mesh
     // gives for the same parameters: float32 [vertex][H, K] (analysis.hpp: meshCurvatures).
     server_.Get(
