@@ -58,12 +58,18 @@ test('drag a vertex: the model and the surface change; undo and redo', async ({ 
   expect(Number(await page.getByTestId('vertex-z').inputValue())).toBeCloseTo(moved[2], 3);
 
   await page.locator('body').click({ position: { x: 5, y: 5 } });
+  // Each key or click once the page shows the step is possible (its button enabled), as a
+  // user sees it: the page learns it from the answer to the step before.
+  await expect(page.getByTestId('undo')).toBeEnabled();
   await page.keyboard.press('Control+z');
   await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(before);
+  await expect(page.getByTestId('redo')).toBeEnabled();
   await page.keyboard.press('Control+Shift+z');
   await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(moved);
+  await expect(page.getByTestId('undo')).toBeEnabled();
   await page.getByTestId('undo').click();
   await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(before);
+  await expect(page.getByTestId('redo')).toBeEnabled();
   await page.getByTestId('redo').click();
   await expect.poll(async () => (await studio.state()).model.vertices[4]).toEqual(moved);
 });
