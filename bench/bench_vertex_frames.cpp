@@ -241,13 +241,15 @@ void writeMeshData(Mesh& mesh, std::size_t nv, bool triangles) {
   writeMeshRange(mesh, 0, nv, 0, triangles ? mesh.patchIds.size() : 0);
 }
 
-/// A baseline: the writing alone, into reused buffers sized as the tessellation's mesh.
-void writeBaseline(benchmark::State& state, bool triangles) {
+/// A baseline: the writing alone, `write(mesh, vertices)`, into reused buffers sized as the
+/// tessellation's mesh at N = Arg 0.
+template <class Write>
+void writeBaseline(benchmark::State& state, Write&& write) {
   Mesh mesh;
   tessellate(tessellationSheet(), {static_cast<std::uint32_t>(state.range(0))}, mesh);
   const std::size_t nv = mesh.vertexCount();
   for (auto _ : state) {
-    writeMeshData(mesh, nv, triangles);
+    write(mesh, nv);
     benchmark::DoNotOptimize(mesh.positions.data());
     benchmark::ClobberMemory();
   }
@@ -257,7 +259,9 @@ void writeBaseline(benchmark::State& state, bool triangles) {
 
 /// Baseline for a fresh tessellation: write the same number of vertices (position and
 /// normal, 6 floats each), the same triangle indices and the same patch ids, computing nothing.
-void BM_WriteVerticesBaseline(benchmark::State& state) { writeBaseline(state, true); }
+void BM_WriteVerticesBaseline(benchmark::State& state) {
+  writeBaseline(state, [](Mesh& mesh, std::size_t nv) { writeMeshData(mesh, nv, true); });
+}
 BENCHMARK(BM_WriteVerticesBaseline)->Apply(meshSizes);
 
 /// The same writing (vertices, indices, patch ids) split over at most Arg 1 threads (oneTBB,
@@ -266,28 +270,24 @@ BENCHMARK(BM_WriteVerticesBaseline)->Apply(meshSizes);
 void BM_WriteVerticesBaselineThreads(benchmark::State& state) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                   static_cast<std::size_t>(state.range(1)));
-  Mesh mesh;
-  tessellate(tessellationSheet(), {static_cast<std::uint32_t>(state.range(0))}, mesh);
-  const std::size_t nv = mesh.vertexCount(), nt = mesh.patchIds.size();
   constexpr std::size_t kChunks = 64;  // many more than cores, few enough to be noise
-  for (auto _ : state) {
+  writeBaseline(state, [](Mesh& mesh, std::size_t nv) {
+    const std::size_t nt = mesh.patchIds.size();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kChunks, 1),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t c = r.begin(); c != r.end(); ++c)
                           writeMeshRange(mesh, nv * c / kChunks, nv * (c + 1) / kChunks,
                                          nt * c / kChunks, nt * (c + 1) / kChunks);
                       });
-    benchmark::DoNotOptimize(mesh.positions.data());
-    benchmark::ClobberMemory();
-  }
-  state.counters["vertices"] = static_cast<double>(nv);
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
+  });
 }
 BENCHMARK(BM_WriteVerticesBaselineThreads)->Apply(scalingRows);
 
 /// The baseline in its own words, "writing the same number of vertices": positions
 /// and normals only (6 floats per vertex), the comparison for re-tessellation.
-void BM_WriteVertexDataBaseline(benchmark::State& state) { writeBaseline(state, false); }
+void BM_WriteVertexDataBaseline(benchmark::State& state) {
+  writeBaseline(state, [](Mesh& mesh, std::size_t nv) { writeMeshData(mesh, nv, false); });
+}
 BENCHMARK(BM_WriteVertexDataBaseline)->Apply(meshSizes);
 
 #if defined(__SSE2__)
@@ -320,18 +320,7 @@ void streamMeshData(Mesh& mesh, std::size_t nv) {
 
 /// BM_WriteVerticesBaseline with streaming stores (the few values after the last whole
 /// group of four are left out: under 16 bytes a buffer).
-void BM_WriteVerticesStreaming(benchmark::State& state) {
-  Mesh mesh;
-  tessellate(tessellationSheet(), {static_cast<std::uint32_t>(state.range(0))}, mesh);
-  const std::size_t nv = mesh.vertexCount();
-  for (auto _ : state) {
-    streamMeshData(mesh, nv);
-    benchmark::DoNotOptimize(mesh.positions.data());
-    benchmark::ClobberMemory();
-  }
-  state.counters["vertices"] = static_cast<double>(nv);
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
-}
+void BM_WriteVerticesStreaming(benchmark::State& state) { writeBaseline(state, streamMeshData); }
 BENCHMARK(BM_WriteVerticesStreaming)->Apply(meshSizes);
 #endif
 

@@ -517,6 +517,18 @@ class StudioServer::Impl {
     recovery_ = false;
   }
 
+  /// A binary answer computed for this revision (X-Revision: the page matches it to its mesh).
+  void sendBinary(httplib::Response& res, std::string bytes) const {
+    res.set_content(std::move(bytes), "application/octet-stream");
+    res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+  }
+
+  /// The bytes of `count` values at `data`, as they lie in memory.
+  template <class T>
+  static std::string bytesOf(const T* data, std::size_t count) {
+    return {reinterpret_cast<const char*>(data), sizeof(T) * count};
+  }
+
   /// What a mesh request asks for (GET /api/mesh, or an edit with `?mesh=1`).
   struct MeshRequest {
     std::uint32_t resolution = kDefaultMeshResolution;
@@ -743,9 +755,7 @@ class StudioServer::Impl {
           if (req.has_param("samples"))
             samples = parseUint(req.get_param_value("samples"), kMinResolution, kMaxMeshResolution,
                                 "samples");
-          res.set_content(boundaryCurves(*session_->solved(solveOptions(req)).frames(), samples),
-                          "application/octet-stream");
-          res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+          sendBinary(res, boundaryCurves(*session_->solved(solveOptions(req)).frames(), samples));
         }));
 
     // The patch (frame) of every triangle of the mesh at `resolution` (uint32 each, as
@@ -755,10 +765,7 @@ class StudioServer::Impl {
           requireEditable();
           const MeshRequest request = meshRequest(req);
           const Mesh mesh = tessellate(session_->solved(request.options), {request.resolution});
-          res.set_content(std::string(reinterpret_cast<const char*>(mesh.patchIds.data()),
-                                      4 * mesh.patchIds.size()),
-                          "application/octet-stream");
-          res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+          sendBinary(res, bytesOf(mesh.patchIds.data(), mesh.patchIds.size()));
         }));
     // The analytic mean and Gaussian curvature at every vertex of the mesh GET /api/mesh
     // gives for the same parameters: float32 [vertex][H, K] (analysis.hpp: meshCurvatures).
@@ -769,10 +776,7 @@ class StudioServer::Impl {
           const VertexFrameSurface& surface = *session_->solved(request.options).frames();
           const Mesh mesh = tessellate(surface, {request.resolution});
           const std::vector<float> values = meshCurvatures(surface, mesh, request.resolution);
-          res.set_content(std::string(reinterpret_cast<const char*>(values.data()),
-                                      sizeof(float) * values.size()),
-                          "application/octet-stream");
-          res.set_header("X-Revision", std::to_string(revision() & 0xffffffffu));
+          sendBinary(res, bytesOf(values.data(), values.size()));
         }));
 
     server_.Get("/api/files", guarded([this](const httplib::Request&, httplib::Response& res) {
