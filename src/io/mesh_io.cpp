@@ -1,9 +1,17 @@
 // Mesh files read: the format chosen by the extension, the file read whole, the reader of
 // its format (OBJ and PLY: mesh_read_obj.cpp, mesh_read_ply.cpp; OFF and STL through CGAL:
 // mesh_read_cgal.cpp; glb through tinygltf: mesh_read_glb.cpp), then the same checks for
-// all. OBJ and PLY keep their own readers: CGAL 5.5's polygon-soup readers drop the normals
-// of both (files pdesurf writes carry them, and round trips keep them), and its OBJ reader
-// refuses files without faces and skips malformed corners ("2/x") without a word.
+// all. OBJ and PLY keep their own readers, because the libraries Debian 12 offers lose data
+// or valid files with them:
+// - CGAL 5.5's polygon-soup readers drop the normals of both (files pdesurf writes carry
+//   them, and round trips keep them);
+// - its PLY reader crashes on integer coordinates ("property int x": a null dynamic_cast in
+//   PLY_element::assign) and refuses face lists of indices other than 32-bit integers
+//   (tests/io/mesh_io_test.cpp, PlyWithIntegerCoordinatesAndShortIndexLists);
+// - its OBJ reader refuses files without faces, skips malformed corners ("2/x") without a
+//   word and names no line;
+// - tinyobjloader (libtinyobjloader-dev) reads a malformed number as 0 ("v 1 abc 3" is
+//   (1, 0, 3)) and a missing one too, where this reader names the line.
 #include "pdesurf/mesh_io.hpp"
 
 #include <fcntl.h>

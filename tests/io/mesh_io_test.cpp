@@ -562,6 +562,36 @@ TEST(MeshIoRead, AsciiPlyWithDoublesAndOtherProperties) {
                        "noz.ply: the vertex element has no property 'z'"));
 }
 
+// The PLY files CGAL 5.5's polygon-soup reader cannot take (it crashes on integer
+// coordinates and refuses index lists of other than 32-bit integers): the reasons
+// src/io/mesh_io.cpp gives for the project's own PLY reader.
+TEST(MeshIoRead, PlyWithIntegerCoordinatesAndShortIndexLists) {
+  TempDir dir;
+  writeText(dir.file("int.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty int x\nproperty short y\n"
+            "property uchar z\nelement face 1\nproperty list uchar ushort vertex_indices\n"
+            "end_header\n-4 0 0\n7 -300 0\n0 12 255\n3 2 1 0\n");
+  const Mesh mesh = readMesh(dir.file("int.ply"));
+  EXPECT_EQ(mesh.positions, (MeshBuffer<float>{-4, 0, 0, 7, -300, 0, 0, 12, 255}));
+  EXPECT_EQ(mesh.indices, (MeshBuffer<std::uint32_t>{2, 1, 0}));
+
+  // The same as binary big-endian: int16 coordinates, a list of int8 counts and uint8 indices.
+  std::string binary =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty int16 x\n"
+      "property int16 y\nproperty int16 z\nelement face 1\n"
+      "property list int8 uint8 vertex_indices\nend_header\n";
+  for (const int value : {-4, 0, 0, 7, -300, 0, 0, 12, 255}) {
+    const auto bits = static_cast<std::uint16_t>(static_cast<std::int16_t>(value));
+    binary.push_back(static_cast<char>(bits >> 8));
+    binary.push_back(static_cast<char>(bits & 0xff));
+  }
+  for (const char byte : {3, 2, 1, 0}) binary.push_back(byte);
+  writeText(dir.file("int-be.ply"), binary);
+  const Mesh fromBinary = readMesh(dir.file("int-be.ply"));
+  EXPECT_EQ(fromBinary.positions, mesh.positions);
+  EXPECT_EQ(fromBinary.indices, mesh.indices);
+}
+
 TEST(MeshIoRead, AsciiStlIsIndexed) {
   TempDir dir;
   std::string text = "solid tetra\n";
