@@ -45,36 +45,35 @@ const std::vector<std::pair<double, double>>& points() {
   return uvs;
 }
 
-/// VertexFramePatch::evaluate (the general evaluation: polynomial plus forces, none here),
-/// then the normal from the cross product.
-void PdesurfEvaluate(benchmark::State& state) {
-  const pdesurf::VertexFramePatch& patch = mugPatch();
+/// Sums `pointAndNormal(u, v)` (a point plus its unit normal) over the 4,096 points.
+template <class PointAndNormal>
+void sumOverPoints(benchmark::State& state, PointAndNormal pointAndNormal) {
   const auto& uvs = points();
   for (auto _ : state) {
     Vec3 sum = Vec3::Zero();
-    for (const auto& [u, v] : uvs) {
-      const pdesurf::SurfacePoint s = patch.evaluate(u, v);
-      const Vec3 n = s.du.cross(s.dv).normalized();
-      sum += s.p + n;
-    }
+    for (const auto& [u, v] : uvs) sum += pointAndNormal(u, v);
     benchmark::DoNotOptimize(sum);
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * uvs.size()));
 }
 
+/// VertexFramePatch::evaluate (the general evaluation: polynomial plus forces, none here),
+/// then the normal from the cross product.
+void PdesurfEvaluate(benchmark::State& state) {
+  const pdesurf::VertexFramePatch& patch = mugPatch();
+  sumOverPoints(state, [&](double u, double v) -> Vec3 {
+    const pdesurf::SurfacePoint s = patch.evaluate(u, v);
+    return s.p + s.du.cross(s.dv).normalized();
+  });
+}
+
 /// evaluatePolynomial: Horner on the ten monomials, normal included (force-free patches).
 void PdesurfHorner(benchmark::State& state) {
   const pdesurf::VertexFramePatch& patch = mugPatch();
-  const auto& uvs = points();
-  for (auto _ : state) {
-    Vec3 sum = Vec3::Zero();
-    for (const auto& [u, v] : uvs) {
-      const pdesurf::PolynomialPatchPoint s = pdesurf::evaluatePolynomial(patch, u, v);
-      sum += s.p + s.normal;
-    }
-    benchmark::DoNotOptimize(sum);
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * uvs.size()));
+  sumOverPoints(state, [&](double u, double v) -> Vec3 {
+    const pdesurf::PolynomialPatchPoint s = pdesurf::evaluatePolynomial(patch, u, v);
+    return s.p + s.normal;
+  });
 }
 
 /// evaluatePolynomial on the 4,096 points at once: still each point on its own (any u, v),

@@ -140,20 +140,22 @@ void runRetessellate(benchmark::State& state, int side, std::uint32_t res) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(nv));
 }
 
-/// The 1,024-frame sheet, tessellated afresh at N = Arg into a new Mesh: allocation, page
-/// faults and freeing included.
-void BM_Tessellate(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
-                Buffers::Fresh);
-}
-BENCHMARK(BM_Tessellate)->Apply(meshSizes);
-
-/// The same, each mesh on memory new to the process (the first tessellation's cost).
-void BM_TessellateCold(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
-                Buffers::Cold);
-}
-BENCHMARK(BM_TessellateCold)->Apply(meshSizes);
+/// The 1,024-frame sheet tessellated at N = Arg:
+/// - BM_Tessellate: afresh into a new Mesh (allocation, page faults and freeing included);
+/// - BM_TessellateCold: the same, each mesh on memory new to the process (the first
+///   tessellation's cost);
+/// - BM_TessellateReused: into a Mesh whose buffers are reused (already mapped: no
+///   allocation, no faults).
+const bool kTessellateRows = [] {
+  for (const auto& [name, buffers] :
+       {std::pair{"BM_Tessellate", Buffers::Fresh}, std::pair{"BM_TessellateCold", Buffers::Cold},
+        std::pair{"BM_TessellateReused", Buffers::Reused}})
+    benchmark::RegisterBenchmark(name, [buffers = buffers](benchmark::State& state) {
+      runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
+                    buffers);
+    })->Apply(meshSizes);
+  return true;
+}();
 
 /// The scaling rows' repetitions also report their fastest: on a shared VM other guests'
 /// work only ever adds time, so the minimum is the least disturbed figure.
@@ -172,13 +174,6 @@ void BM_TessellateThreads(benchmark::State& state) {
                 Buffers::Fresh);
 }
 BENCHMARK(BM_TessellateThreads)->Apply(scalingRows);
-
-/// The same into a Mesh whose buffers are reused (already mapped): no allocation, no faults.
-void BM_TessellateReused(benchmark::State& state) {
-  runTessellate(state, tessellationSheet(), static_cast<std::uint32_t>(state.range(0)),
-                Buffers::Reused);
-}
-BENCHMARK(BM_TessellateReused)->Apply(meshSizes);
 
 /// The 1,024-frame sheet re-tessellated at N = Arg.
 void BM_Retessellate(benchmark::State& state) {

@@ -657,6 +657,16 @@ def write_models(named_texts, check_only, script):
     return 0
 
 
+def run(main, errors, script):
+    """Exits with main(sys.argv), or with 1 after 'SCRIPT: message' on stderr when it raises
+    one of `errors`. Shared by every example generator."""
+    try:
+        sys.exit(main(sys.argv))
+    except errors as error:
+        print("%s: %s" % (script, error), file=sys.stderr)
+        sys.exit(1)
+
+
 def main(argv):
     if any(a in ("-h", "--help") for a in argv[1:]):
         print(__doc__.strip())
@@ -670,8 +680,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv))
-    except ModelError as error:
-        print("make_examples: %s" % error, file=sys.stderr)
-        sys.exit(1)
+    run(main, ModelError, "make_examples")

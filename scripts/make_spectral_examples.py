@@ -32,7 +32,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_examples import write_models  # noqa: E402  (one writer for every generator)
+from make_examples import run, write_models  # noqa: E402  (one writer for every generator)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TWO_PI = 2.0 * math.pi
@@ -447,8 +447,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main(sys.argv))
-    except RuntimeError as error:
-        print("make_spectral_examples: %s" % error, file=sys.stderr)
-        sys.exit(1)
+    run(main, RuntimeError, "make_spectral_examples")

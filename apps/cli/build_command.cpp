@@ -25,9 +25,8 @@ struct BuildCommand {
     CLI::App* cmd = app.add_subcommand("build",
                                        "Solve a model and write its mesh (OBJ, PLY, STL, "
                                        "glb or OFF, chosen by the output's extension)");
-    cmd->add_option("model", modelPath, "model file (JSON)")->required();
-    cmd->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb .off")
-        ->required();
+    addModelFile(cmd, modelPath);
+    addMeshOutput(cmd, outPath);
     addResolution(cmd, resolution);
     cmd->add_flag("-q,--quiet", quiet, "print nothing on success");
     solveArgs.add(cmd);

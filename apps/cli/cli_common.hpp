@@ -52,6 +52,24 @@ inline CLI::Option* addResolution(CLI::App* cmd, std::uint32_t& resolution,
       ->capture_default_str();
 }
 
+/// The required positional argument "model": the model file a command reads.
+inline CLI::Option* addModelFile(CLI::App* cmd, std::string& path,
+                                 const std::string& help = "model file (JSON)") {
+  return cmd->add_option("model", path, help)->required();
+}
+
+/// The required positional argument "mesh": the mesh file a command reads.
+inline CLI::Option* addMeshFile(CLI::App* cmd, std::string& path,
+                                const std::string& help = "mesh file: .off .obj .ply .stl") {
+  return cmd->add_option("mesh", path, help)->required();
+}
+
+/// The required -o,--output: the mesh file a command writes.
+inline CLI::Option* addMeshOutput(CLI::App* cmd, std::string& path) {
+  return cmd->add_option("-o,--output", path, "mesh file to write: .obj .ply .stl .glb .off")
+      ->required();
+}
+
 /// "1 frame", "2 frames", "1 vertex", "3 vertices".
 inline std::string count(std::size_t n, const std::string& noun) { return countText(n, noun); }
 

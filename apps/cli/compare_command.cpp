@@ -34,8 +34,8 @@ struct CompareCommand {
         "compare",
         "RMS, mean and largest distance between a model (tessellated as by build) and a mesh, "
         "both ways, relative to the mesh's bounding-box diagonal");
-    cmd->add_option("model", modelPath, "model file (JSON)")->required();
-    cmd->add_option("mesh", meshPath, "reference mesh file: .off .obj .ply .stl")->required();
+    addModelFile(cmd, modelPath);
+    addMeshFile(cmd, meshPath, "reference mesh file: .off .obj .ply .stl");
     addResolution(cmd, resolution, "samples per patch side, as for build");
     cmd->add_option("--samples", samples,
                     "face samples on each mesh, spread by area (every vertex and every "

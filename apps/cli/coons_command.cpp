@@ -37,9 +37,8 @@ struct CoonsCommand {
         "coons",
         "Coons patches on the boundary curves of a vertex-frame model's patches (the seed's "
         "baselines): bicubic with tangents w1 α(u), w2 β(u), w3 γ(v), w4 δ(v), or bilinear");
-    cmd->add_option("model", modelPath, "vertex-frames model file (JSON)")->required();
-    cmd->add_option("-o,--output", outPath, "mesh file to write: .obj .ply .stl .glb .off")
-        ->required();
+    addModelFile(cmd, modelPath, "vertex-frames model file (JSON)");
+    addMeshOutput(cmd, outPath);
     cmd->add_option("--frame", frames, "the frames to fill (default: every frame)");
     cmd->add_option("--tangents", tangents,
                     "w1,w2,w3,w4 as 12 numbers w1x,w1y,w1z,...,w4z (default 0: flat tangents)")

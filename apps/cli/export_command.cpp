@@ -50,7 +50,7 @@ CLI::App* ExportCommand::add(CLI::App& app) {
       "export",
       "Write a model's patches as B-spline faces, sewn into shells, to STEP or IGES (chosen by "
       "the output's extension): exact where a patch is polynomial, within --tolerance otherwise");
-  cmd->add_option("model", modelPath, "model file (JSON)")->required();
+  addModelFile(cmd, modelPath);
   cmd->add_option("-o,--output", outPath, "file to write: .step .stp .igs .iges")->required();
   toleranceOption = cmd->add_option(
       "--tolerance", tolerance,

@@ -22,7 +22,7 @@ struct InfoCommand {
   CLI::App* add(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "info", "Counts, the largest C0 gap on shared edges, bounding box and storage size");
-    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    addModelFile(cmd, modelPath);
     cmd->add_flag("--json", json, "print JSON");
     solveArgs.add(cmd);
     return cmd;

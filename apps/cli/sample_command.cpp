@@ -26,7 +26,7 @@ struct SampleCommand {
     CLI::App* cmd = app.add_subcommand(
         "sample",
         "Print each patch sampled on a grid as JSON: points[j*N+i] = S(i/(N-1), j/(N-1))");
-    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    addModelFile(cmd, modelPath);
     cmd->add_option("--grid", grid, "samples per patch side (N)")
         ->required()
         ->check(CLI::Range(2u, 4097u));

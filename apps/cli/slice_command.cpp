@@ -31,7 +31,7 @@ struct SliceCommand {
         "slice",
         "Cut a mesh (OFF, OBJ, PLY, STL) by planes perpendicular to an axis; print each "
         "plane's largest closed loop (or the one --near / --track pick) as JSON");
-    cmd->add_option("mesh", meshPath, "mesh file: .off .obj .ply .stl")->required();
+    addMeshFile(cmd, meshPath);
     cmd->add_option("--axis", axis, "axis the planes are perpendicular to: x, y or z")
         ->required()
         ->check(CLI::IsMember({"x", "y", "z"}));

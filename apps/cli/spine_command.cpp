@@ -24,7 +24,7 @@ struct SpineCommand {
   CLI::App* add(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "spine", "Print the spine A0(u) of a spectral or cross-sections model as JSON polylines");
-    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    addModelFile(cmd, modelPath);
     cmd->add_option("--count", count, "points per patch")
         ->check(CLI::Range(2u, 100000u))
         ->capture_default_str();

@@ -19,7 +19,7 @@ struct StudioCommand {
   CLI::App* add(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "studio", "Serve a model for interactive editing in a browser (until Ctrl-C)");
-    cmd->add_option("model", modelPath, "model file (JSON)")->required();
+    addModelFile(cmd, modelPath);
     cmd->add_option("--root", options.root,
                     "folder the studio may open and write in (default: the model's folder)");
     cmd->add_option("--port", options.port, "port to listen on (0: any free port)")

@@ -194,15 +194,9 @@ std::string extentText(Axis axis, double lo, double hi) {
 }  // namespace
 
 const char* axisName(Axis axis) {
-  switch (axis) {
-    case Axis::X:
-      return "x";
-    case Axis::Y:
-      return "y";
-    case Axis::Z:
-      return "z";
-  }
-  return "?";
+  static constexpr const char* kNames[] = {"x", "y", "z"};  // in the order of Axis
+  const auto index = static_cast<std::size_t>(axis);
+  return index < std::size(kNames) ? kNames[index] : "?";
 }
 
 std::optional<Axis> parseAxis(const std::string& name) {

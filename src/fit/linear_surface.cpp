@@ -29,7 +29,7 @@ const Basis& basis() {
 }
 
 /// The weights of P1..P8 in C9 (direction 0, the u-strip's cross term) and in C8
-/// (direction 1), from the closed form as well (math-notes §1 lists them).
+/// (direction 1), from the closed form as well (docs/derivations.md §1.2 lists them).
 using CrossWeights = std::array<std::array<double, 8>, 2>;
 const CrossWeights& crossWeights() {
   static const CrossWeights table = [] {

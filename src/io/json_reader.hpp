@@ -32,16 +32,9 @@ inline const char* kComponents[3] = {"x", "y", "z"};
 
 /// Readable names of the four sides, for messages.
 inline const char* sideName(Side s) {
-  switch (s) {
-    case Side::Alpha:
-      return "P1-P2-P3";
-    case Side::Delta:
-      return "P3-P4-P5";
-    case Side::Beta:
-      return "P7-P6-P5";
-    default:
-      return "P1-P8-P7";
-  }
+  // Indexed by Side: Alpha, Delta, Beta, Gamma.
+  static constexpr const char* kNames[] = {"P1-P2-P3", "P3-P4-P5", "P7-P6-P5", "P1-P8-P7"};
+  return kNames[static_cast<std::size_t>(s) & 3];
 }
 
 inline const char* typeName(const Json& j) {
@@ -283,51 +276,53 @@ class Reader {
     }
   }
 
-  /// A frame's "forces": an array of {"f0", optional "region"}, each solvable on frame f.
-  std::vector<FrameForce> frameForces(const Json& list, const std::string& path, const Frame& f,
-                                      std::uint32_t frame) const {
+  /// An array of forces at `path`: each an object with "f0", the rest read by
+  /// `rest(force, json, itsPath)`.
+  template <class Force, class Rest>
+  std::vector<Force> forceList(const Json& list, const std::string& path, Rest&& rest) const {
     expectArray(list, path, 0);
-    std::vector<FrameForce> forces;
+    std::vector<Force> forces;
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string fp = fmt::format("{}[{}]", path, i);
       const Json& jforce = list[i];
       expectObject(jforce, fp);
-      FrameForce force;
+      Force force;
       force.f0 = vec3(member(jforce, fp, "f0"), fp + ".f0");
-      if (auto r = jforce.find("region"); r != jforce.end())
-        force.region = region(*r, fp + ".region");
-      checkSolvable(f, force.f0, force.region, fp, frame, false);
-      forces.push_back(force);
+      rest(force, jforce, fp);
+      forces.push_back(std::move(force));
     }
     return forces;
+  }
+
+  /// A frame's "forces": an array of {"f0", optional "region"}, each solvable on frame f.
+  std::vector<FrameForce> frameForces(const Json& list, const std::string& path, const Frame& f,
+                                      std::uint32_t frame) const {
+    return forceList<FrameForce>(list, path,
+                                 [&](FrameForce& force, const Json& jforce, const std::string& fp) {
+                                   if (auto r = jforce.find("region"); r != jforce.end())
+                                     force.region = region(*r, fp + ".region");
+                                   checkSolvable(f, force.f0, force.region, fp, frame, false);
+                                 });
   }
 
   /// The top-level "forces": an array of {"f0", "frames"}, frames listed once each, each
   /// force solvable on each of its frames (with the model's a1, a2 of that frame).
   std::vector<SharedForce> sharedForces(const Json& list, const std::string& path,
                                         const VertexFrameModel& model) const {
-    expectArray(list, path, 0);
-    std::vector<SharedForce> forces;
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      const std::string fp = fmt::format("{}[{}]", path, i);
-      const Json& jforce = list[i];
-      expectObject(jforce, fp);
-      SharedForce force;
-      force.f0 = vec3(member(jforce, fp, "f0"), fp + ".f0");
-      const Json& frames = member(jforce, fp, "frames");
-      expectArray(frames, fp + ".frames", 1);
-      std::vector<std::uint8_t> seen(model.frames.size(), 0);
-      for (std::size_t j = 0; j < frames.size(); ++j) {
-        const std::string ip = fmt::format("{}.frames[{}]", fp, j);
-        const std::uint32_t k = index(frames[j], ip, model.frames.size(), "frame", "frames");
-        if (seen[k]) fail(ip, fmt::format("frame {} is listed twice", k));
-        seen[k] = 1;
-        checkSolvable(model.frames[k], force.f0, Region{}, fp, k, true);
-        force.frames.push_back(k);
-      }
-      forces.push_back(std::move(force));
-    }
-    return forces;
+    return forceList<SharedForce>(
+        list, path, [&](SharedForce& force, const Json& jforce, const std::string& fp) {
+          const Json& frames = member(jforce, fp, "frames");
+          expectArray(frames, fp + ".frames", 1);
+          std::vector<std::uint8_t> seen(model.frames.size(), 0);
+          for (std::size_t j = 0; j < frames.size(); ++j) {
+            const std::string ip = fmt::format("{}.frames[{}]", fp, j);
+            const std::uint32_t k = index(frames[j], ip, model.frames.size(), "frame", "frames");
+            if (seen[k]) fail(ip, fmt::format("frame {} is listed twice", k));
+            seen[k] = 1;
+            checkSolvable(model.frames[k], force.f0, Region{}, fp, k, true);
+            force.frames.push_back(k);
+          }
+        });
   }
 
  private:

@@ -108,24 +108,11 @@ MeshFormat meshFormatFromPath(const std::string& path) {
 Mesh readMesh(const std::string& path) {
   const MeshFormat format = meshFormatFromPath(path);
   const std::string data = readFile(path);
-  Mesh mesh;
-  switch (format) {
-    case MeshFormat::Obj:
-      mesh = detail::readObj(data, path);
-      break;
-    case MeshFormat::Ply:
-      mesh = detail::readPly(data, path);
-      break;
-    case MeshFormat::Stl:
-      mesh = detail::readStl(data, path);
-      break;
-    case MeshFormat::Glb:
-      mesh = detail::readGlb(data, path);
-      break;
-    case MeshFormat::Off:
-      mesh = detail::readOff(data, path);
-      break;
-  }
+  using Reader = Mesh (*)(const std::string& data, const std::string& path);
+  static constexpr Reader kReaders[] = {detail::readObj, detail::readPly, detail::readStl,
+                                        detail::readGlb, detail::readOff};  // MeshFormat's order
+  static_assert(std::size(kReaders) == static_cast<std::size_t>(MeshFormat::Off) + 1);
+  Mesh mesh = kReaders[static_cast<std::size_t>(format)](data, path);
   checkReadMesh(mesh, path);
   return mesh;
 }

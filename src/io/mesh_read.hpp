@@ -2,6 +2,8 @@
 // reader, which mesh_io.cpp calls by the file's extension.
 #pragma once
 
+#include <cmath>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -19,11 +21,25 @@ template <typename... Args>
   throw MeshIoError(fmt::format("{}: {}", path, fmt::format(format, std::forward<Args>(args)...)));
 }
 
+/// `value` as a float: rounded to nearest, ±FLT_MAX for values that round to it, infinite
+/// beyond (a plain cast would be undefined there); checkReadMesh reports infinite ones.
+inline float toFloat(double value) {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  // FLT_MAX plus half its unit in the last place (2^104): values below it round to FLT_MAX.
+  constexpr double kRoundsToMax = double{kMax} + 0x1p103;
+  if (std::abs(value) > double{kMax}) {
+    const float magnitude = std::abs(value) < kRoundsToMax ? kMax : kInfinity;
+    return value > 0 ? magnitude : -magnitude;
+  }
+  return static_cast<float>(value);
+}
+
 /// OBJ (mesh_read_obj.cpp).
-Mesh readObj(std::string_view text, const std::string& path);
+Mesh readObj(const std::string& text, const std::string& path);
 
 /// PLY, ASCII or binary (mesh_read_ply.cpp).
-Mesh readPly(std::string_view data, const std::string& path);
+Mesh readPly(const std::string& data, const std::string& path);
 
 /// glb, through tinygltf (mesh_read_glb.cpp).
 Mesh readGlb(const std::string& data, const std::string& path);

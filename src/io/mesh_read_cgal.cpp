@@ -75,20 +75,6 @@ std::size_t occurrences(std::string_view data, std::string_view word) {
   return count;
 }
 
-/// `value` as a float: rounded to nearest, ±FLT_MAX for values that round to it, infinite
-/// beyond (a plain cast would be undefined there); checkReadMesh reports infinite ones.
-float toFloat(double value) {
-  constexpr float kMax = std::numeric_limits<float>::max();
-  constexpr float kInfinity = std::numeric_limits<float>::infinity();
-  // FLT_MAX plus half its unit in the last place (2^104): values below it round to FLT_MAX.
-  constexpr double kRoundsToMax = double{kMax} + 0x1p103;
-  if (std::abs(value) > double{kMax}) {
-    const float magnitude = std::abs(value) < kRoundsToMax ? kMax : kInfinity;
-    return value > 0 ? magnitude : -magnitude;
-  }
-  return static_cast<float>(value);
-}
-
 /// The soup as a Mesh: positions as floats, polygons fanned into triangles.
 Mesh meshOf(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
             const std::string& path) {

@@ -34,7 +34,7 @@ std::uint32_t resolveObjIndex(std::int64_t raw, std::size_t defined, const Token
 
 }  // namespace
 
-Mesh readObj(std::string_view text, const std::string& path) {
+Mesh readObj(const std::string& text, const std::string& path) {
   Tokenizer tokens(text, path, '#');
   Mesh mesh;
   std::vector<float> normals;

@@ -7,6 +7,8 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -69,42 +71,31 @@ class PlyValues {
       if (type == PlyType::Float64) return tokens_.number<double>(token, where);
       return static_cast<double>(tokens_.number<std::int64_t>(token, where));
     }
-    switch (type) {
-      case PlyType::Int8:
-        return bytes_->get<std::int8_t>(where);
-      case PlyType::UInt8:
-        return bytes_->get<std::uint8_t>(where);
-      case PlyType::Int16:
-        return bytes_->get<std::int16_t>(where);
-      case PlyType::UInt16:
-        return bytes_->get<std::uint16_t>(where);
-      case PlyType::Int32:
-        return bytes_->get<std::int32_t>(where);
-      case PlyType::UInt32:
-        return bytes_->get<std::uint32_t>(where);
-      case PlyType::Float32:
-        return bytes_->get<float>(where);
-      case PlyType::Float64:
-        return bytes_->get<double>(where);
-    }
-    return 0;
+    return binary(static_cast<std::size_t>(type), where,
+                  std::make_index_sequence<std::tuple_size_v<CTypes>>{});
   }
 
  private:
+  /// The C types of PlyType's values, in its order.
+  using CTypes = std::tuple<std::int8_t, std::uint8_t, std::int16_t, std::uint16_t, std::int32_t,
+                            std::uint32_t, float, double>;
+  static_assert(std::tuple_size_v<CTypes> == static_cast<std::size_t>(PlyType::Float64) + 1);
+
+  /// The next binary value of the type CTypes[type].
+  template <std::size_t... I>
+  double binary(std::size_t type, const Where& where, std::index_sequence<I...>) {
+    double value = 0;
+    ((I == type && (value = bytes_->get<std::tuple_element_t<I, CTypes>>(where), true)) || ...);
+    return value;
+  }
+
   Tokenizer& tokens_;
   std::optional<ByteReader> bytes_;
 };
 
-/// `value` rounded to float; beyond float's range, infinite (a plain cast would be undefined).
-float toFloat(double value) {
-  constexpr double kMax = std::numeric_limits<float>::max();
-  constexpr float kInfinity = std::numeric_limits<float>::infinity();
-  return value > kMax ? kInfinity : value < -kMax ? -kInfinity : static_cast<float>(value);
-}
-
 }  // namespace
 
-Mesh readPly(std::string_view data, const std::string& path) {
+Mesh readPly(const std::string& data, const std::string& path) {
   Tokenizer tokens(data, path, '\0');
   if (tokens.onLine() != "ply") fail(path, "not a PLY file (it does not start with 'ply')");
   std::string format;

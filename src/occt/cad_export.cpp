@@ -83,6 +83,20 @@ void fullPrecision(Interface_FloatWriter& writer) {
   writer.SetZeroSuppress(false);
 }
 
+/// The text of an interface model written by `Writer` (StepData_StepWriter or
+/// IGESData_IGESWriter) with `protocol`, its reals at full precision.
+template <class Writer, class Model, class Protocol>
+std::string modelText(const Model& model, const Protocol& protocol, const std::string& path,
+                      const char* format) {
+  Writer out(model);
+  fullPrecision(out.FloatWriter());
+  out.SendModel(protocol);
+  std::ostringstream text;
+  if (!out.Print(text))
+    throw CadError(fmt::format("{}: Open CASCADE could not write the {} data", path, format));
+  return text.str();
+}
+
 std::string stepText(const TopoDS_Shape& shape, const std::string& path) {
   STEPControl_Controller::Init();
   Interface_Static::SetCVal("write.step.schema", "AP214IS");
@@ -90,13 +104,7 @@ std::string stepText(const TopoDS_Shape& shape, const std::string& path) {
   STEPControl_Writer writer;
   if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
     throw CadError(fmt::format("{}: Open CASCADE could not translate the shape to STEP", path));
-  StepData_StepWriter out(writer.Model());
-  fullPrecision(out.FloatWriter());
-  out.SendModel(StepAP214::Protocol());
-  std::ostringstream text;
-  if (!out.Print(text))
-    throw CadError(fmt::format("{}: Open CASCADE could not write the STEP data", path));
-  return text.str();
+  return modelText<StepData_StepWriter>(writer.Model(), StepAP214::Protocol(), path, "STEP");
 }
 
 std::string igesText(const TopoDS_Shape& shape, const std::string& path) {
@@ -106,13 +114,8 @@ std::string igesText(const TopoDS_Shape& shape, const std::string& path) {
     throw CadError(fmt::format("{}: Open CASCADE could not translate the shape to IGES", path));
   writer.ComputeModel();
   // What IGESControl_Writer::Write does, with the reals at full precision.
-  IGESData_IGESWriter out(writer.Model());
-  fullPrecision(out.FloatWriter());
-  out.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
-  std::ostringstream text;
-  if (!out.Print(text))
-    throw CadError(fmt::format("{}: Open CASCADE could not write the IGES data", path));
-  return text.str();
+  return modelText<IGESData_IGESWriter>(writer.Model(), IGESSelect_WorkLibrary::DefineProtocol(),
+                                        path, "IGES");
 }
 
 }  // namespace

@@ -491,15 +491,10 @@ CrossSectionChain buildCrossSectionChain(std::span<const CurveInput> curves,
 }
 
 const char* chainMethodName(ChainMethod method) {
-  switch (method) {
-    case ChainMethod::Global:
-      return "global";
-    case ChainMethod::ExactC2:
-      return "c2";
-    case ChainMethod::SharedCurves:
-      return "shared-curves";
-  }
-  return "?";
+  // In the order of ChainMethod.
+  static constexpr const char* kNames[] = {"global", "c2", "shared-curves"};
+  const auto index = static_cast<std::size_t>(method);
+  return index < std::size(kNames) ? kNames[index] : "?";
 }
 
 std::vector<JointGap> measureJointGaps(const CrossSectionChain& chain, std::uint32_t samples) {

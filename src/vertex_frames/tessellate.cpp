@@ -324,31 +324,31 @@ void writeInteriorQuads(std::uint32_t a0, std::size_t count,
   for (std::size_t e = 0; e < 6 * (count - q); ++e) out[6 * q + e] = base + pattern[e];
 }
 
-/// The two triangles of each quad between two rows of ids, wound by `Flip`.
+/// Triangle (a b c), or (a c b) when flipped, at o.
+inline void writeTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, bool flip,
+                          std::uint32_t* o) {
+  o[0] = a;
+  o[1] = flip ? c : b;
+  o[2] = flip ? b : c;
+}
+
+/// The two triangles of each quad (a b c d) between two rows of ids, split along a–c and
+/// wound by `Flip`.
 template <bool Flip>
 inline void writeQuadRow(const std::uint32_t* __restrict prev, const std::uint32_t* __restrict row,
                          std::size_t quads, std::uint32_t* __restrict out) {
   for (std::size_t i = 0; i < quads; ++i) {
     const std::uint32_t a = prev[i], b = prev[i + 1], c = row[i + 1], d = row[i];
-    std::uint32_t* o = out + 6 * i;
-    o[0] = a;
-    o[1] = Flip ? c : b;
-    o[2] = Flip ? b : c;
-    o[3] = a;
-    o[4] = Flip ? d : c;
-    o[5] = Flip ? c : d;
+    writeTriangle(a, b, c, Flip, out + 6 * i);
+    writeTriangle(a, c, d, Flip, out + 6 * i + 3);
   }
 }
 
 /// Quad (a b c d) split along b–d instead of a–c.
 inline void writeQuadAlt(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
                          bool flip, std::uint32_t* o) {
-  o[0] = a;
-  o[1] = flip ? d : b;
-  o[2] = flip ? b : d;
-  o[3] = b;
-  o[4] = flip ? d : c;
-  o[5] = flip ? c : d;
+  writeTriangle(a, b, d, flip, o);
+  writeTriangle(b, c, d, flip, o + 3);
 }
 
 /// The mesh ids of one patch's boundary, side after side (Alpha, Delta, Beta, Gamma), each
