@@ -6,6 +6,9 @@
 
 namespace pdesurf {
 
+using detail::Json;
+using detail::Reader;
+
 PatchQuery parsePatchQuery(std::string_view json, std::size_t frames, bool withPoints) {
   const Reader rd("patch query");
   const Json doc = rd.parseDocument(json);

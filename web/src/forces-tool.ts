@@ -33,6 +33,8 @@ export interface ForcesTool {
   toggleDraw(): void;
   /** The client point of a handle of the selected force (tests). */
   handleScreen(handle: number): { x: number; y: number } | null;
+  /** The outlines drawn: each one's frame and region (tests). */
+  drawn(): { frame: number; region: Region }[];
   /** The client point of (u, v) on frame `frame`'s patch (tests). */
   uvScreen(frame: number, uv: UV): Promise<{ x: number; y: number }>;
 }
@@ -123,6 +125,7 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
   }
 
   let ticket = 0;
+  let drawn: { frame: number; region: Region }[] = [];
   /** Fetches the outlines' points (one request per frame) and draws them. */
   async function redraw(): Promise<void> {
     const mine = ++ticket;
@@ -162,6 +165,7 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
         for (const at of [k, k + 3]) color.set([o.color.r, o.color.g, o.color.b], at);
       }
     });
+    drawn = list.map((o) => ({ frame: o.frame, region: o.region }));
     lines.geometry.setAttribute('position', new THREE.BufferAttribute(position, 3));
     lines.geometry.setAttribute('color', new THREE.BufferAttribute(color, 3));
     handlePoints = selected ? points.get(selected.frame)!.slice(handleFirst, handleFirst + 5).map((q) => new THREE.Vector3(...q)) : [];
@@ -287,6 +291,7 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
 
   return {
     toggleDraw,
+    drawn: () => drawn,
     handleScreen(h) {
       const p = handlePoints[h];
       if (!p) return null;

@@ -80,6 +80,8 @@ export function installTestHooks(studio: Studio): void {
     gizmoArrow: (axis: 'x' | 'y' | 'z') => modellerTools.gizmo?.arrowScreen(axis) ?? null,
     /** The client point of a handle of the selected force region (0..3 corners, 4 centre). */
     forceHandle: (h: number) => modellerTools.forces?.handleScreen(h) ?? null,
+    /** The force outlines drawn on the surface: frame and region of each. */
+    forceOutlines: () => modellerTools.forces?.drawn() ?? [],
     /** The client point of (u, v) on frame `f`'s patch. */
     uvScreen: (f: number, u: number, v: number) => modellerTools.forces?.uvScreen(f, [u, v]),
     /** The page's surface mesh positions, flat xyz. */
