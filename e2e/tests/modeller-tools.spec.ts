@@ -118,8 +118,11 @@ test('the gizmo arrow moves the selection along x; Shift+S scales and Shift+R tu
   for (const v of frame1)
     for (let c = 0; c < 3; ++c)
       expect(Math.abs(scaled.vertices[v][c] - (centre[c] + 2 * (m.vertices[v][c] - centre[c])))).toBeLessThan(ROUNDING);
-  await page.waitForTimeout(300);
+  await page.getByTestId('view-iso').click();
+  await page.waitForTimeout(400);
   await page.screenshot({ path: shot('modeller-scale.png') });
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(300);
   await undoTo(page, studio, 'move.json', original);
 
   // Shift+R: a quarter turn about z through the centre: (x, y) → (cx − (y − cy), cy + (x − cx)).
