@@ -6,7 +6,7 @@
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
-import { expect, openStudio, settle, shot, test } from './fixture';
+import { expect, newModel, openStudio, settle, shot, test } from './fixture';
 import type { Studio } from './fixture';
 
 /** A region bound picked with the mouse is within this of where it was aimed: a pixel is
@@ -22,17 +22,6 @@ const hook = <T>(page: Page, name: string, ...args: unknown[]) =>
 
 const fileText = (studio: Studio, name: string) => readFileSync(path.join(studio.root, name), 'utf8');
 const model = async (studio: Studio) => (await studio.state()).model;
-
-async function newModel(page: Page, kind: string, file: string, u = 1, v = 1): Promise<void> {
-  await page.getByTestId('new-model').click();
-  await page.getByTestId('new-kind').selectOption(kind);
-  await page.getByTestId('new-u').fill(String(u));
-  await page.getByTestId('new-v').fill(String(v));
-  await page.getByTestId('new-path').fill(file);
-  await page.getByTestId('new-create').click();
-  await expect(page.getByTestId('model-path')).toHaveText(file);
-  await expect(page.getByTestId('c0-gap')).toContainText('C0 gap');
-}
 
 /** Selects frame `f` by clicking its patch on the surface (again until it is selected: a
  * click can be lost while software WebGL renders). */

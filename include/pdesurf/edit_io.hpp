@@ -62,8 +62,8 @@ void checkTransform(const AnyModel& model, const AffineMap& map);
 struct PatchQuery {
   static constexpr std::size_t kMaxPoints = 4096;
   std::uint32_t frame = 0;
-  std::vector<Vec3> points;                ///< when asked with "points"
-  std::vector<std::array<double, 2>> uv;   ///< when asked with "uv"
+  std::vector<Vec3> points;               ///< when asked with "points"
+  std::vector<std::array<double, 2>> uv;  ///< when asked with "uv"
 };
 PatchQuery parsePatchQuery(std::string_view json, std::size_t frames, bool withPoints);
 

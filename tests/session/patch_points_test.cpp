@@ -12,7 +12,9 @@ namespace {
 /// 1e-6) and well above rounding.
 constexpr double kParameterTolerance = 1e-8;
 
-VertexFrameSurface sculpt() { return solve(loadVertexFrameModel(PDESURF_SOURCE_DIR "/examples/sculpt.json")); }
+VertexFrameSurface sculpt() {
+  return solve(loadVertexFrameModel(PDESURF_SOURCE_DIR "/examples/sculpt.json"));
+}
 
 TEST(NearestParameters, RecoversThePointsOfThePatchAndPointsAboveThem) {
   const VertexFrameSurface s = sculpt();

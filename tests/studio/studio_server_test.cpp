@@ -700,7 +700,8 @@ TEST_F(StudioServerTest, BoundariesAreThePatchesEdgeCurves) {
 
 TEST_F(StudioServerTest, PatchPointsAndTheirParametersRoundTrip) {
   // S(u, v) of frame 3, then the parameters of those points: the same (u, v).
-  const auto points = post("/api/patch-points", R"({"frame": 3, "uv": [[0.2, 0.7], [1, 0], [0.5, 0.5]]})");
+  const auto points =
+      post("/api/patch-points", R"({"frame": 3, "uv": [[0.2, 0.7], [1, 0], [0.5, 0.5]]})");
   ASSERT_EQ(points->status, 200) << points->body;
   const Json p = Json::parse(points->body)["points"];
   ASSERT_EQ(p.size(), 3u);
@@ -724,7 +725,8 @@ TEST_F(StudioServerTest, PatchPointsAndTheirParametersRoundTrip) {
   };
   for (const auto& [body, path] : bad) {
     const bool withPoints = body.find("points") != std::string::npos;
-    const auto [status, message] = failure(post(withPoints ? "/api/patch-uv" : "/api/patch-points", body));
+    const auto [status, message] =
+        failure(post(withPoints ? "/api/patch-uv" : "/api/patch-points", body));
     EXPECT_EQ(status, 400) << body;
     EXPECT_NE(message.find(path), std::string::npos) << message;
   }
