@@ -185,6 +185,16 @@ test('draw a force rectangle on a patch, resize it by a handle, edit its numbers
   expect(Math.abs(resized[1] - 0.9)).toBeLessThan(PICK_UV);
   expect(Math.abs(resized[3] - 0.95)).toBeLessThan(PICK_UV);
 
+  // The centre handle dragged 0.05 toward u = 0: the region moves whole.
+  const mid = [(resized[0] + resized[1]) / 2, (resized[2] + resized[3]) / 2];
+  await drag(page, await hook<Point>(page, 'forceHandle', 4), await hook<Point>(page, 'uvScreen', 0, mid[0] - 0.05, mid[1]));
+  await expect.poll(async () => (await model(studio)).frames[0].forces[0].region[0]).not.toBe(resized[0]);
+  const shifted = (await model(studio)).frames[0].forces[0].region;
+  expect(Math.abs(shifted[0] - (resized[0] - 0.05))).toBeLessThan(PICK_UV);
+  expect(shifted[1] - shifted[0]).toBeCloseTo(resized[1] - resized[0], 9);
+  expect(shifted[3] - shifted[2]).toBeCloseTo(resized[3] - resized[2], 9);
+  resized.splice(0, 4, ...shifted);
+
   // A typed u0: the handle follows it on the surface.
   await page.getByTestId('force-0-u0').fill('0.1');
   await page.getByTestId('force-0-u0').press('Enter');
@@ -202,8 +212,8 @@ test('draw a force rectangle on a patch, resize it by a handle, edit its numbers
   expect(saved.frames[0].forces).toEqual([{ f0: [0, 0, 0], region: [0.1, resized[1], resized[2], resized[3]] }]);
   await page.screenshot({ path: shot('modeller-force-handles.png') });
 
-  // Three edits (draw, resize, typed), three undo steps: the file as it was.
-  await undoTo(page, studio, 'force.json', original, 3);
+  // Four edits (draw, resize, move, typed), four undo steps: the file as it was.
+  await undoTo(page, studio, 'force.json', original, 4);
 });
 
 test('the selected frame\'s force regions are drawn on its patch, with handles on the selected one', async ({ page, studio }) => {
