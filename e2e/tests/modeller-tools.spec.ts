@@ -76,7 +76,6 @@ test('the gizmo arrow moves the selection along x; Shift+S scales and Shift+R tu
   expect(arrow).not.toBeNull();
   await page.waitForTimeout(200);
   await drag(page, arrow, { x: arrow.x + 80, y: arrow.y + 30 }); // off the axis: only x counts
-  await page.screenshot({ path: shot('modeller-gizmo.png') });
   const moved = await model(studio);
   const dx = moved.vertices[frame1[0]][0] - m.vertices[frame1[0]][0];
   expect(dx).toBeGreaterThan(0.05);
@@ -87,6 +86,9 @@ test('the gizmo arrow moves the selection along x; Shift+S scales and Shift+R tu
   }
   m.vertices.forEach((p: number[], v: number) => frame1.includes(v) || expect(moved.vertices[v]).toEqual(p));
   expect((await studio.state()).undo).toBe(1); // one drag, one undo step
+  await page.getByTestId('view-iso').click();
+  await page.waitForTimeout(400);
+  await page.screenshot({ path: shot('modeller-gizmo.png') });
   await page.keyboard.press('Control+s');
   await expect(page.getByTestId('dirty')).toBeHidden();
   expect(JSON.parse(fileText(studio, 'move.json')).vertices[frame1[0]][0]).toBeCloseTo(m.vertices[frame1[0]][0] + dx, 12);
