@@ -767,6 +767,28 @@ class StudioServer::Impl {
           const Mesh mesh = tessellate(session_->solved(request.options), {request.resolution});
           sendBinary(res, bytesOf(mesh.patchIds.data(), mesh.patchIds.size()));
         }));
+    // Points of one patch and their parameters (edit_io.hpp: PatchQuery), solved as the
+    // query's solver says: the page places force regions on the surface with them.
+    const auto patchRoute = [this](bool withPoints) {
+      return guarded([this, withPoints](const httplib::Request& req, httplib::Response& res) {
+        requireEditable();
+        const VertexFrameSurface& surface = *session_->solved(solveOptions(req)).frames();
+        const PatchQuery q = parsePatchQuery(req.body, surface.patches.size(), withPoints);
+        const VertexFramePatch& patch = surface.patches[q.frame];
+        Json out = Json::array();
+        for (const Vec3& p : q.points) {
+          const auto [u, v] = nearestParameters(patch, p);
+          out.push_back({u, v});
+        }
+        for (const auto& [u, v] : q.uv) {
+          const Vec3 p = patch.evaluate(u, v).p;
+          out.push_back({p.x(), p.y(), p.z()});
+        }
+        sendJson(res, {{withPoints ? "uv" : "points", out}});
+      });
+    };
+    server_.Post("/api/patch-uv", patchRoute(true));
+    server_.Post("/api/patch-points", patchRoute(false));
     // The analytic mean and Gaussian curvature at every vertex of the mesh GET /api/mesh
     // gives for the same parameters: float32 [vertex][H, K] (analysis.hpp: meshCurvatures).
     server_.Get(

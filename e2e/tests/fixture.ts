@@ -122,3 +122,15 @@ export async function dragVertex(page: Page, vertex: number, dx: number, dy: num
   await page.mouse.up();
   await settle(page);
 }
+
+/** Makes a new model through the New… dialog (the modeller's specs). */
+export async function newModel(page: Page, kind: string, file: string, u = 1, v = 1): Promise<void> {
+  await page.getByTestId('new-model').click();
+  await page.getByTestId('new-kind').selectOption(kind);
+  await page.getByTestId('new-u').fill(String(u));
+  await page.getByTestId('new-v').fill(String(v));
+  await page.getByTestId('new-path').fill(file);
+  await page.getByTestId('new-create').click();
+  await expect(page.getByTestId('model-path')).toHaveText(file);
+  await expect(page.getByTestId('c0-gap')).toContainText('C0 gap');
+}

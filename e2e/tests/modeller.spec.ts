@@ -5,7 +5,7 @@
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
-import { expect, meshUpToDate, openStudio, settle, shot, test } from './fixture';
+import { expect, meshUpToDate, newModel, openStudio, settle, shot, test } from './fixture';
 import type { Studio } from './fixture';
 
 /** What a C0 gap "at rounding level" is for these models (a few units across): the library's
@@ -36,18 +36,6 @@ function sharedSides(model: { frames: { vertices: number[] }[] }): number {
 async function undoKey(page: Page): Promise<void> {
   await expect(page.getByTestId('undo')).toBeEnabled();
   await page.keyboard.press('Control+z');
-}
-
-/** Makes a new model through the New… dialog. */
-async function newModel(page: Page, kind: string, file: string, u = 1, v = 1): Promise<void> {
-  await page.getByTestId('new-model').click();
-  await page.getByTestId('new-kind').selectOption(kind);
-  await page.getByTestId('new-u').fill(String(u));
-  await page.getByTestId('new-v').fill(String(v));
-  await page.getByTestId('new-path').fill(file);
-  await page.getByTestId('new-create').click();
-  await expect(page.getByTestId('model-path')).toHaveText(file);
-  await expect(page.getByTestId('c0-gap')).toContainText('C0 gap');
 }
 
 /** A click at a client point, with shift held when `shift` (mouse.click takes no modifiers). */

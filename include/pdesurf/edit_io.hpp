@@ -2,7 +2,9 @@
 // with the paths of what is wrong: the edits a ModelSession (session.hpp) applies.
 #pragma once
 
+#include <array>
 #include <string_view>
+#include <vector>
 
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
@@ -51,5 +53,18 @@ AffineMap parseTransform(std::string_view json);
 /// other types' solvers accept any valid map's result (transform.hpp).
 void checkTransform(const VertexFrameModel& model, const AffineMap& map);
 void checkTransform(const AnyModel& model, const AffineMap& map);
+
+/// A question about the points of one patch (the studio's POST /api/patch-uv and
+/// /api/patch-points: forces placed on the surface):
+///   {"frame": k, "points": [[x, y, z], ...]}  the parameters of the nearest point of each
+///   {"frame": k, "uv": [[u, v], ...]}          the points S(u, v), u and v in [0, 1]
+/// At most kMaxPoints entries. Throws ModelError with source "patch query" and the JSON path.
+struct PatchQuery {
+  static constexpr std::size_t kMaxPoints = 4096;
+  std::uint32_t frame = 0;
+  std::vector<Vec3> points;               ///< when asked with "points"
+  std::vector<std::array<double, 2>> uv;  ///< when asked with "uv"
+};
+PatchQuery parsePatchQuery(std::string_view json, std::size_t frames, bool withPoints);
 
 }  // namespace pdesurf

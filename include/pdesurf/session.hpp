@@ -3,6 +3,7 @@
 // this; nothing here knows about HTTP or files (edit_io.hpp parses and checks the edits).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -107,6 +108,11 @@ bool changesStructure(const Edit& edit);
 /// twice, an edge of three frames, anything parseVertexFrameModel refuses.
 VertexFrameModel restructure(const VertexFrameModel& model, const FrameTopology& topology,
                              const VertexFrameSurface& surface, const Edit& edit);
+
+/// The parameters (u, v) in [0, 1]² of the point of `patch` nearest `point`: a grid of
+/// kNearestGrid² samples finds the basin, then projected Gauss-Newton steps refine it (the
+/// studio maps points picked on the surface mesh to parameters: force regions drawn by hand).
+std::array<double, 2> nearestParameters(const VertexFramePatch& patch, const Vec3& point);
 
 /// What POST /api/new makes: one frame, a grid of u × v frames, or a tube of u frames round
 /// the z axis and v along it; square frames of side `size` in z = 0 (the grid) or round z

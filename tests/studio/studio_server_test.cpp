@@ -698,6 +698,40 @@ TEST_F(StudioServerTest, BoundariesAreThePatchesEdgeCurves) {
   EXPECT_EQ(failure(get("/api/boundaries?samples=1")).first, 400);
 }
 
+TEST_F(StudioServerTest, PatchPointsAndTheirParametersRoundTrip) {
+  // S(u, v) of frame 3, then the parameters of those points: the same (u, v).
+  const auto points =
+      post("/api/patch-points", R"({"frame": 3, "uv": [[0.2, 0.7], [1, 0], [0.5, 0.5]]})");
+  ASSERT_EQ(points->status, 200) << points->body;
+  const Json p = Json::parse(points->body)["points"];
+  ASSERT_EQ(p.size(), 3u);
+  const auto uv = post("/api/patch-uv", Json{{"frame", 3}, {"points", p}}.dump());
+  ASSERT_EQ(uv->status, 200) << uv->body;
+  const Json back = Json::parse(uv->body)["uv"];
+  constexpr double kParameterTolerance = 1e-7;  // Gauss-Newton ends far below it
+  const double expected[3][2] = {{0.2, 0.7}, {1, 0}, {0.5, 0.5}};
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 2; ++c)
+      EXPECT_NEAR(back[i][c].get<double>(), expected[i][c], kParameterTolerance) << i << " " << c;
+  // Frame 3 spans x, y in [1, 2] (the grid's upper right frame): its corner (1, 0) is there.
+  EXPECT_NEAR(p[1][0].get<double>(), 2.0, 1e-12);
+  EXPECT_NEAR(p[1][1].get<double>(), 1.0, 1e-12);
+
+  const std::pair<std::string, std::string> bad[] = {
+      {R"({"frame": 4, "uv": [[0, 0]]})", "$.frame"},
+      {R"({"frame": 0, "uv": [[0, 1.5]]})", "$.uv[0][1]"},
+      {R"({"frame": 0, "uv": []})", "$.uv"},
+      {R"({"frame": 0, "points": [[0, 0]]})", "$.points[0]"},
+  };
+  for (const auto& [body, path] : bad) {
+    const bool withPoints = body.find("points") != std::string::npos;
+    const auto [status, message] =
+        failure(post(withPoints ? "/api/patch-uv" : "/api/patch-points", body));
+    EXPECT_EQ(status, 400) << body;
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+  }
+}
+
 TEST_F(StudioServerTest, AutosaveRecoversAfterACrash) {
   ASSERT_EQ(post("/api/edit", move(12, 1.0, 1.0, 0.9))->status, 200);
   ASSERT_EQ(post("/api/edit", move(6, 0.5, 0.5, -0.4))->status, 200);

@@ -236,6 +236,13 @@ export const api = {
     return { revision: Number(res.headers.get('X-Revision')), ids: new Uint32Array(await res.arrayBuffer()) };
   },
 
+  /** The parameters (u, v) of the points of frame `frame`'s patch nearest `points`. */
+  patchUv: async (frame: number, points: Vec3[], solver: Pick<MeshOptions, 'solver' | 'seed'> = {}) =>
+    (await request<{ uv: [number, number][] }>('POST', `/api/patch-uv?${solverQuery(solver)}`, { frame, points })).uv,
+  /** The points S(u, v) of frame `frame`'s patch. */
+  patchPoints: async (frame: number, uv: (readonly [number, number])[], solver: Pick<MeshOptions, 'solver' | 'seed'> = {}) =>
+    (await request<{ points: Vec3[] }>('POST', `/api/patch-points?${solverQuery(solver)}`, { frame, uv })).points,
+
   async mesh(options: MeshOptions = {}): Promise<MeshData | MeshDelta> {
     const q = meshQuery(options).toString();
     const res = await send(`/api/mesh${q ? `?${q}` : ''}`, 'GET');

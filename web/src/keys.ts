@@ -84,7 +84,11 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
       { keys: 'X', what: 'Delete the selected frames', matches: plain('x'), run: () => modeller.deleteFrames() },
       { keys: 'S', what: 'Split the selected frame in 4', matches: (e) => plain('s')(e) && !e.shiftKey, run: () => modeller.split('4') },
       { keys: 'W', what: 'Weld 2 selected vertices, or 2 selected boundary edges', matches: plain('w'), run: () => modeller.weld() },
-      { keys: 'R', what: "Flip the selected frames' u direction", matches: plain('r'), run: () => modeller.flip() },
+      { keys: 'R', what: "Flip the selected frames' u direction", matches: (e) => plain('r')(e) && !e.shiftKey, run: () => modeller.flip() },
+      { keys: 'G', what: 'Move gizmo on the selection (on/off)', matches: plain('g'), run: () => modeller.toggleGizmo() },
+      { keys: 'Shift+S', what: "Scale the selection about its centre (the panel's factor)", matches: (e) => plain('s')(e) && e.shiftKey, run: () => modeller.scaleSelection() },
+      { keys: 'Shift+R', what: "Rotate the selection about its centre (the panel's axis and degrees)", matches: (e) => plain('r')(e) && e.shiftKey, run: () => modeller.rotateSelection() },
+      { keys: 'D', what: 'Draw force: drag a rectangle on a patch (on/off)', matches: plain('d'), run: () => modeller.toggleDrawForce() },
     );
 
   // The help: one row per shortcut, and what the mouse does.

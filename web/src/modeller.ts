@@ -1,20 +1,26 @@
 // The modeller: the toolbar's Model group (new model, extrude, add frame, delete, split,
 // weld, flip: each one structure edit of the server's session, one undo step), the new-model
-// dialog, the selection's typed offset, and picking frames on the surface (the triangle in
-// front under the pointer, its frame from GET /api/patch-ids).
+// dialog, the selection's typed offset, scale and turn (one move-vertices edit each), the move
+// gizmo (gizmo.ts), forces drawn on the surface (forces-tool.ts), and in the surface view:
+// picking frames (the triangle in front under the pointer, its frame from GET
+// /api/patch-ids) and box-selecting the vertices seen (none hidden behind the surface).
+import * as THREE from 'three';
 import { api } from './api';
 import type { Vec3 } from './api';
 import { $, readNumber } from './dom';
+import { mountForcesTool } from './forces-tool';
+import type { ForcesTool } from './forces-tool';
+import { mountGizmo, selectionVertices } from './gizmo';
+import type { Gizmo } from './gizmo';
+import { modelBox } from './scene';
+import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
 import type { Studio } from './studio';
-import {
-  addFrameEdit,
-  extrudeEdit,
-  frameOfTriangle,
-  framesEdit,
-  splitEdit,
-  weldEdit,
-} from './structure';
+import { addFrameEdit, extrudeEdit, framesEdit, splitEdit, toggled, weldEdit } from './structure';
 import type { Made } from './structure';
+import { SurfacePicker } from './surface-pick';
+
+/** The modeller's tools, for the browser tests (test-hooks.ts). */
+export const modellerTools: { gizmo?: Gizmo; forces?: ForcesTool } = {};
 
 /** Presses that move less than this many pixels are clicks (not orbits). */
 const CLICK_PIXELS = 5;
@@ -27,6 +33,10 @@ export interface ModellerActions {
   split(parts: '4' | 'u' | 'v'): void;
   weld(): void;
   flip(): void;
+  toggleGizmo(): void;
+  scaleSelection(): void;
+  rotateSelection(): void;
+  toggleDrawForce(): void;
 }
 
 export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, refreshFiles: () => Promise<void>): ModellerActions {
@@ -55,6 +65,11 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     split: (parts) => send(() => splitEdit(store.state.selectedFrames, parts)),
     weld: () => send(() => weldEdit(store.state.model!, store.state.selectedVertices)),
     flip: () => send(() => framesEdit('flip-frames', store.state.selectedFrames)),
+    // Set below, with the tools they drive.
+    toggleGizmo: () => {},
+    scaleSelection: () => {},
+    rotateSelection: () => {},
+    toggleDrawForce: () => {},
   };
   $('new-model').addEventListener('click', actions.newModel);
   $('extrude').addEventListener('click', actions.extrude);
@@ -91,41 +106,51 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     }),
   );
 
-  // The selection moved by a typed offset: its vertices, else the selected frames' vertices.
-  const selectionVertices = (): number[] => {
-    const s = store.state;
-    if (s.selectedVertices.length) return [...s.selectedVertices];
-    if (s.selectedVertex !== null) return [s.selectedVertex];
-    const all = new Set<number>();
-    for (const f of s.selectedFrames) for (const v of s.model?.frames[f]?.vertices ?? []) all.add(v);
-    return [...all].sort((a, b) => a - b);
-  };
-  $('offset-apply').addEventListener('click', () =>
+  /** Moves the selection's vertices to the places `place` gives them: one move-vertices edit. */
+  const moveSelection = (what: string, place: (points: Vec3[]) => Vec3[] | null) =>
     void studio.run(async () => {
       const model = store.state.model;
-      const vertices = selectionVertices();
-      if (!model || !vertices.length) throw new Error('Move: select vertices or frames first');
-      const d: number[] = [];
-      for (const axis of ['x', 'y', 'z']) {
-        const value = readNumber($<HTMLInputElement>(`offset-${axis}`), { label: `d${axis}` }, (m) => studio.showError(m));
-        if (value === null) return;
-        d.push(value);
-      }
-      const positions = vertices.map((v) => model.vertices[v].map((x, i) => x + d[i]) as Vec3);
+      const vertices = selectionVertices(studio);
+      if (!model || !vertices.length) throw new Error(`${what}: select vertices or frames first`);
+      const positions = place(vertices.map((v) => model.vertices[v]));
+      if (!positions) return;
       const status = await api.edit({ op: 'move-vertices', vertices, positions });
       store.update(['status'], (s) => (s.status = status));
       await studio.reloadAll();
+    });
+  const numberIn = (id: string, rule: Parameters<typeof readNumber>[1] = {}) =>
+    readNumber($<HTMLInputElement>(id), rule, (m) => studio.showError(m));
+
+  // The selection moved by a typed offset, scaled or turned about its centre.
+  $('offset-apply').addEventListener('click', () =>
+    moveSelection('Move', (points) => {
+      const d = ['x', 'y', 'z'].map((axis) => numberIn(`offset-${axis}`, { label: `d${axis}` }));
+      if (d.some((x) => x === null)) return null;
+      return points.map((p) => p.map((x, i) => x + d[i]!) as Vec3);
     }),
   );
+  actions.scaleSelection = () =>
+    moveSelection('Scale', (points) => {
+      const factor = numberIn('selection-scale', { label: 'scale factor', min: 0, nonZero: true });
+      return factor === null ? null : scaledAbout(points, boxCentre(points), factor);
+    });
+  actions.rotateSelection = () =>
+    moveSelection('Rotate', (points) => {
+      const degrees = numberIn('selection-degrees', { label: 'degrees' });
+      const axis = $<HTMLSelectElement>('selection-axis').value as 'x' | 'y' | 'z';
+      return degrees === null ? null : rotatedAbout(points, boxCentre(points), axis, degrees);
+    });
+  $('selection-scale-apply').addEventListener('click', actions.scaleSelection);
+  $('selection-rotate-apply').addEventListener('click', actions.rotateSelection);
   store.subscribe(['selection', 'model'], (state) => {
     const n = state.selectedVertices.length || (state.selectedVertex !== null ? 1 : 0);
     $('vertex-selection').textContent = n === 0 ? 'no vertices' : n === 1 ? '1 vertex' : `${n} vertices`;
   });
 
   // A click on the surface selects the frame of the patch in front (shift or ctrl: adds or
-  // removes it). The triangles' frames come from the server once per mesh layout.
+  // removes it); shift+drag (ctrl+drag) selects (removes) the vertices seen in a box.
+  const picker = new SurfacePicker(studio);
   const canvas = surfaceView.renderer.domElement;
-  let ids: { key: string; ids: Uint32Array } | null = null;
   let press: { x: number; y: number } | null = null;
   canvas.addEventListener('pointerdown', (ev) => {
     if (ev.button === 0) press = { x: ev.clientX, y: ev.clientY };
@@ -135,16 +160,10 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     press = null;
     const mesh = store.state.mesh;
     if (!start || !store.state.model || !mesh || Math.hypot(ev.clientX - start.x, ev.clientY - start.y) >= CLICK_PIXELS) return;
-    const triangle = surfaceView.triangleAt(ev.clientX, ev.clientY);
+    const hit = picker.hit(ev.clientX, ev.clientY);
     const adding = ev.shiftKey || ev.ctrlKey || ev.metaKey;
     void studio.run(async () => {
-      let frame: number | null = null;
-      if (triangle !== null) {
-        // The layout depends on the frames and the resolution alone.
-        const key = `${mesh.resolution}/${mesh.triangleCount}/${store.state.model!.frames.map((f) => f.vertices.join(',')).join(';')}`;
-        if (ids?.key !== key) ids = { key, ids: (await api.patchIds(mesh.resolution)).ids };
-        frame = frameOfTriangle(ids.ids, triangle);
-      }
+      const frame = hit ? await picker.frameOf(hit.triangle) : null;
       store.update(['selection', 'forces'], (s) => {
         if (frame === null) {
           if (!adding) s.selectedFrames = new Set();
@@ -158,5 +177,78 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
       });
     });
   });
+
+  // The box: taken in the capture phase of the view's container, before the orbit controls.
+  let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;
+  const container = surfaceView.container;
+  container.addEventListener(
+    'pointerdown',
+    (ev) => {
+      if (ev.button !== 0 || !store.state.model || !(ev.shiftKey || ev.ctrlKey || ev.metaKey)) return;
+      surfaceView.controls.enabled = false; // no orbit; the click still selects a frame
+      const div = document.createElement('div');
+      div.className = 'select-box';
+      div.dataset.testid = 'surface-select-box';
+      document.body.append(div);
+      box = { x: ev.clientX, y: ev.clientY, pointer: ev.pointerId, remove: !ev.shiftKey, div };
+    },
+    true,
+  );
+  container.addEventListener('pointermove', (ev) => {
+    if (!box || ev.pointerId !== box.pointer) return;
+    Object.assign(box.div.style, {
+      left: `${Math.min(box.x, ev.clientX)}px`,
+      top: `${Math.min(box.y, ev.clientY)}px`,
+      width: `${Math.abs(ev.clientX - box.x)}px`,
+      height: `${Math.abs(ev.clientY - box.y)}px`,
+    });
+  });
+  const endBox = (ev: PointerEvent) => {
+    if (!box || ev.pointerId !== box.pointer) return;
+    const b = box;
+    box = null;
+    b.div.remove();
+    surfaceView.controls.enabled = true;
+    const model = store.state.model;
+    if (!model || Math.hypot(ev.clientX - b.x, ev.clientY - b.y) < CLICK_PIXELS) return;
+    const size = modelBox(model).getSize(new THREE.Vector3()).length();
+    const [left, right] = [Math.min(b.x, ev.clientX), Math.max(b.x, ev.clientX)];
+    const [top, bottom] = [Math.min(b.y, ev.clientY), Math.max(b.y, ev.clientY)];
+    picker.refresh();
+    let next = [...store.state.selectedVertices];
+    model.vertices.forEach((v, i) => {
+      const s = surfaceView.toClient(new THREE.Vector3(...v));
+      if (s.x < left || s.x > right || s.y < top || s.y > bottom || !picker.seen(v, size)) return;
+      next = toggled(next, i, b.remove ? 'remove' : 'add');
+    });
+    store.update(['selection'], (s) => {
+      s.selectedVertices = next;
+      s.selectedVertex = next.length ? next[next.length - 1] : null;
+    });
+  };
+  container.addEventListener('pointerup', endBox);
+  container.addEventListener('pointercancel', endBox);
+
+  // The selected vertices, drawn over the surface too.
+  const dots = new THREE.Points(
+    new THREE.BufferGeometry(),
+    new THREE.PointsMaterial({ color: 0xee6c4d, size: 9, sizeAttenuation: false, depthTest: false }),
+  );
+  dots.renderOrder = 5;
+  dots.frustumCulled = false;
+  surfaceView.scene.add(dots);
+  store.subscribe(['model', 'selection', 'vertex'], (state) => {
+    const model = state.model;
+    const picked = model ? state.selectedVertices.filter((v) => v < model.vertices.length) : [];
+    dots.geometry.setAttribute('position', new THREE.Float32BufferAttribute(picked.flatMap((v) => model!.vertices[v]), 3));
+    surfaceView.invalidate();
+  });
+
+  const gizmo = mountGizmo(studio);
+  const forces = mountForcesTool(studio, picker);
+  actions.toggleGizmo = gizmo.toggle;
+  actions.toggleDrawForce = forces.toggleDraw;
+  modellerTools.gizmo = gizmo;
+  modellerTools.forces = forces;
   return actions;
 }

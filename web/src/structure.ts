@@ -83,11 +83,6 @@ export function splitEdit(frames: ReadonlySet<number>, parts: '4' | 'u' | 'v'): 
   return { edit: parts === '4' ? { op: 'split-frame', frame, parts: 4 } : { op: 'split-frame', frame, parts: 2, across: parts } };
 }
 
-/** The frame of each triangle, as GET /api/patch-ids sends it. */
-export function frameOfTriangle(ids: Uint32Array, triangle: number): number | null {
-  return triangle >= 0 && triangle < ids.length ? ids[triangle] : null;
-}
-
 /** A selection toggled: `item` added, or removed when `remove` (or, with `toggle`, when present). */
 export function toggled(list: readonly number[], item: number, mode: 'add' | 'remove' | 'toggle'): number[] {
   const has = list.includes(item);

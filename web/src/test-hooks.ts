@@ -2,6 +2,7 @@
 // where things are on screen, edits through the page, the page's state. Loaded only when
 // a test drives the page (navigator.webdriver) or with ?test=1 (main.ts).
 import { api } from './api';
+import { modellerTools } from './modeller';
 import type { Edit } from './api';
 import { positionsBox } from './transform';
 import type { Studio } from './studio';
@@ -75,6 +76,14 @@ export function installTestHooks(studio: Studio): void {
     },
     /** The selection: vertices in pick order, frames. */
     selection: () => ({ vertices: [...store.state.selectedVertices], frames: [...store.state.selectedFrames].sort((a, b) => a - b) }),
+    /** The client point of the move gizmo's arrow along `axis` (null while it is hidden). */
+    gizmoArrow: (axis: 'x' | 'y' | 'z') => modellerTools.gizmo?.arrowScreen(axis) ?? null,
+    /** The client point of a handle of the selected force region (0..3 corners, 4 centre). */
+    forceHandle: (h: number) => modellerTools.forces?.handleScreen(h) ?? null,
+    /** The force outlines drawn on the surface: frame and region of each. */
+    forceOutlines: () => modellerTools.forces?.drawn() ?? [],
+    /** The client point of (u, v) on frame `f`'s patch. */
+    uvScreen: (f: number, u: number, v: number) => modellerTools.forces?.uvScreen(f, [u, v]),
     /** The page's surface mesh positions, flat xyz. */
     meshPositions: () => Array.from(store.state.mesh?.positions ?? []),
   };

@@ -1,0 +1,307 @@
+// Forces placed on the surface: the regions of the selected frame's forces drawn on its patch
+// (the selected one with handles), the patches of the shared forces over the selected frames
+// (seed Fig. 9) outlined; with Draw force on (D), a drag on a patch makes a new force over the
+// rectangle it spans in the patch's (u, v); a region's corner handles resize it and its
+// centre handle moves it. Each change is one set-forces edit (one undo step); the panel's
+// u0 u1 v0 v1 boxes show the same numbers. Points and parameters come from the server's
+// solved patches (POST /api/patch-points, /api/patch-uv), so the outlines lie on the surface.
+import * as THREE from 'three';
+import { api } from './api';
+import type { FrameForce, Region, Vec3 } from './api';
+import { $ } from './dom';
+import { moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from './regions';
+import type { UV } from './regions';
+import type { Studio } from './studio';
+import type { SurfacePicker } from './surface-pick';
+
+/** Points per side of an outline. */
+const OUTLINE_SAMPLES = 12;
+/** A press within this many pixels of a handle takes it. */
+const HANDLE_PICK_PIXELS = 10;
+const HANDLE_PIXELS = 11;
+/** Frames selected beyond this many get no outlines (one request per frame). */
+const MAX_OUTLINED_FRAMES = 16;
+
+const REGION_COLOR = new THREE.Color(0x7b2cbf);
+const SELECTED_COLOR = new THREE.Color(0xee6c4d);
+const SHARED_COLOR = new THREE.Color(0x2a9d3f);
+
+/** Handles: the selected region's corners 0..3 (regionCorners' order), then its centre. */
+export const CENTRE_HANDLE = 4;
+
+export interface ForcesTool {
+  toggleDraw(): void;
+  /** The client point of a handle of the selected force (tests). */
+  handleScreen(handle: number): { x: number; y: number } | null;
+  /** The outlines drawn: each one's frame and region (tests). */
+  drawn(): { frame: number; region: Region }[];
+  /** The client point of (u, v) on frame `frame`'s patch (tests). */
+  uvScreen(frame: number, uv: UV): Promise<{ x: number; y: number }>;
+}
+
+interface Outline {
+  frame: number;
+  region: Region;
+  color: THREE.Color;
+}
+
+/** A gesture on the surface: a new region being drawn, or a handle dragged. */
+interface Gesture {
+  pointer: number;
+  frame: number;
+  /** The force changed (-1: a new one). */
+  force: number;
+  handle: number;
+  start: Region;
+  /** Where the drag started, in the patch's parameters (resolves once the server answers). */
+  from: Promise<UV | null>;
+  region: Region;
+  /** The latest parameter request: answers to older ones are dropped. */
+  asked: number;
+  /** Where the press was (a press that does not move draws nothing). */
+  x: number;
+  y: number;
+}
+
+/** Presses that move less than this many pixels are clicks. */
+const CLICK_PIXELS = 5;
+
+export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTool {
+  const { store, surfaceView, pump } = studio;
+  const lines = new THREE.LineSegments(
+    new THREE.BufferGeometry(),
+    new THREE.LineBasicMaterial({ vertexColors: true, depthTest: false, transparent: true }),
+  );
+  lines.renderOrder = 4;
+  lines.frustumCulled = false;
+  const handles = new THREE.Points(
+    new THREE.BufferGeometry(),
+    new THREE.PointsMaterial({ color: SELECTED_COLOR, size: HANDLE_PIXELS, sizeAttenuation: false, depthTest: false }),
+  );
+  handles.renderOrder = 5;
+  handles.frustumCulled = false;
+  surfaceView.scene.add(lines, handles);
+
+  let drawing = false;
+  const button = $<HTMLButtonElement>('draw-force');
+  const toggleDraw = () => {
+    drawing = !drawing;
+    button.setAttribute('aria-pressed', String(drawing));
+    button.classList.toggle('on', drawing);
+    surfaceView.renderer.domElement.style.cursor = drawing ? 'crosshair' : '';
+    studio.say(drawing ? 'Draw force: drag a rectangle on a patch' : 'Draw force off');
+  };
+  button.addEventListener('click', toggleDraw);
+
+  let gesture: Gesture | null = null;
+  /** The selected force's handles on screen's world points: corners, then centre. */
+  let handlePoints: THREE.Vector3[] = [];
+  let handleOf: { frame: number; force: number; region: Region } | null = null;
+
+  /** What to outline now: the selected frame's regions (or the gesture's), shared forces. */
+  function outlines(): { list: Outline[]; selected: { frame: number; force: number; region: Region } | null } {
+    const s = store.state;
+    const model = s.model;
+    const list: Outline[] = [];
+    let selected: { frame: number; force: number; region: Region } | null = null;
+    if (!model) return { list, selected };
+    const frames = [...s.selectedFrames].sort((a, b) => a - b).slice(0, MAX_OUTLINED_FRAMES);
+    if (frames.length === 1) {
+      const f = frames[0];
+      const forces = model.frames[f]?.forces ?? [];
+      const k = Math.min(s.selectedForce, forces.length - 1);
+      forces.forEach((force, i) => {
+        const region = gesture && gesture.frame === f && gesture.force === i ? gesture.region : (force.region ?? [0, 1, 0, 1]);
+        list.push({ frame: f, region, color: i === k ? SELECTED_COLOR : REGION_COLOR });
+        if (i === k) selected = { frame: f, force: i, region };
+      });
+    }
+    if (gesture && gesture.force < 0) list.push({ frame: gesture.frame, region: gesture.region, color: SELECTED_COLOR });
+    const picked = new Set(frames);
+    for (const shared of model.forces ?? [])
+      if (shared.frames.some((f) => picked.has(f)))
+        for (const f of shared.frames) list.push({ frame: f, region: [0, 1, 0, 1], color: SHARED_COLOR });
+    return { list, selected };
+  }
+
+  let ticket = 0;
+  let drawn: { frame: number; region: Region }[] = [];
+  /** Fetches the outlines' points (one request per frame) and draws them. */
+  async function redraw(): Promise<void> {
+    const mine = ++ticket;
+    const { list, selected } = outlines();
+    const byFrame = new Map<number, UV[]>();
+    const uvOf = (f: number) => byFrame.get(f) ?? (byFrame.set(f, []), byFrame.get(f)!);
+    const spans = list.map((o) => {
+      const uv = uvOf(o.frame);
+      const first = uv.length;
+      uv.push(...regionOutline(o.region, OUTLINE_SAMPLES));
+      return first;
+    });
+    let handleFirst = -1;
+    if (selected) {
+      const uv = uvOf(selected.frame);
+      handleFirst = uv.length;
+      const r = selected.region;
+      uv.push(...regionCorners(r), [(r[0] + r[1]) / 2, (r[2] + r[3]) / 2]);
+    }
+    const points = new Map<number, Vec3[]>();
+    try {
+      await Promise.all([...byFrame].map(async ([f, uv]) => points.set(f, await api.patchPoints(f, uv, studio.solver))));
+    } catch (e) {
+      if (mine === ticket) studio.showError(e);
+      return;
+    }
+    if (mine !== ticket) return; // a later redraw is on its way
+    const n = 4 * OUTLINE_SAMPLES;
+    const position = new Float32Array(list.length * n * 6);
+    const color = new Float32Array(list.length * n * 6);
+    list.forEach((o, i) => {
+      const p = points.get(o.frame)!;
+      for (let j = 0; j < n; ++j) {
+        const k = 6 * (i * n + j);
+        position.set(p[spans[i] + j], k);
+        position.set(p[spans[i] + ((j + 1) % n)], k + 3);
+        for (const at of [k, k + 3]) color.set([o.color.r, o.color.g, o.color.b], at);
+      }
+    });
+    drawn = list.map((o) => ({ frame: o.frame, region: o.region }));
+    lines.geometry.setAttribute('position', new THREE.BufferAttribute(position, 3));
+    lines.geometry.setAttribute('color', new THREE.BufferAttribute(color, 3));
+    handlePoints = selected ? points.get(selected.frame)!.slice(handleFirst, handleFirst + 5).map((q) => new THREE.Vector3(...q)) : [];
+    handleOf = selected;
+    handles.geometry.setAttribute('position', new THREE.Float32BufferAttribute(handlePoints.flatMap((q) => q.toArray()), 3));
+    surfaceView.invalidate();
+  }
+  store.subscribe(['model', 'selection', 'forces', 'mesh'], () => void redraw());
+
+  /** The handle of the selected force under a client point, if any. */
+  function handleAt(x: number, y: number): number | null {
+    let best: number | null = null, bestD = HANDLE_PICK_PIXELS;
+    handlePoints.forEach((p, i) => {
+      const s = surfaceView.toClient(p);
+      const d = Math.hypot(s.x - x, s.y - y);
+      if (s.visible && d <= bestD) (best = i), (bestD = d);
+    });
+    return best;
+  }
+
+  /** The parameters on the gesture's patch of the surface point under a client point. */
+  async function uvAt(frame: number, x: number, y: number): Promise<UV | null> {
+    const hit = picker.hit(x, y);
+    if (!hit) return null;
+    const [uv] = await api.patchUv(frame, [hit.point.toArray() as Vec3], studio.solver);
+    return uv;
+  }
+
+  /** Sets frame `f`'s forces (page copy and server, one undo step), selecting force `k`. */
+  function setForces(f: number, forces: FrameForce[], k: number): void {
+    store.update(['forces', 'selection'], (s) => {
+      s.model!.frames[f].forces = forces;
+      s.selectedFrames = new Set([f]);
+      s.selectedForce = k;
+    });
+    const sent = structuredClone(forces);
+    void pump.once('force', () => ({ op: 'set-forces', frame: f, forces: sent }));
+  }
+
+  const container = surfaceView.container;
+  container.addEventListener(
+    'pointerdown',
+    (ev) => {
+      const model = store.state.model;
+      if (ev.button !== 0 || !model || gesture) return;
+      const handle = handleAt(ev.clientX, ev.clientY);
+      let frame: Promise<number | null>;
+      let force = -1;
+      let start: Region;
+      if (handle !== null && handleOf) {
+        frame = Promise.resolve(handleOf.frame);
+        force = handleOf.force;
+        start = handleOf.region;
+      } else if (drawing && !ev.shiftKey && !ev.ctrlKey) {
+        const hit = picker.hit(ev.clientX, ev.clientY);
+        if (!hit) return;
+        frame = picker.frameOf(hit.triangle);
+        start = [0, 0, 0, 0];
+      } else return;
+      ev.stopPropagation(); // neither the orbit controls nor the frame picking
+      ev.preventDefault();
+      container.setPointerCapture(ev.pointerId);
+      const x = ev.clientX, y = ev.clientY;
+      const g: Gesture = { pointer: ev.pointerId, frame: -1, force, handle: handle ?? -1, start, region: start, asked: 0, from: Promise.resolve(null), x, y };
+      g.from = frame.then((f) => {
+        if (f === null) return null;
+        g.frame = f;
+        if (handle === CENTRE_HANDLE) return [(start[0] + start[1]) / 2, (start[2] + start[3]) / 2] as UV;
+        return handle !== null ? regionCorners(start)[handle] : uvAt(f, x, y);
+      });
+      gesture = g;
+    },
+    true,
+  );
+
+  /** The gesture's region with the pointer at a client point. */
+  async function follow(g: Gesture, x: number, y: number): Promise<void> {
+    const asked = ++g.asked;
+    const from = await g.from;
+    if (!from || g.frame < 0) return;
+    const to = await uvAt(g.frame, x, y);
+    if (!to || asked !== g.asked || gesture !== g) return;
+    g.region =
+      g.handle === CENTRE_HANDLE ? moveRegion(g.start, from, to) : g.handle >= 0 ? resizeRegion(g.start, g.handle, to) : regionFromCorners(from, to);
+    await redraw();
+  }
+
+  container.addEventListener(
+    'pointermove',
+    (ev) => {
+      if (!gesture || ev.pointerId !== gesture.pointer) return;
+      ev.stopPropagation();
+      void follow(gesture, ev.clientX, ev.clientY);
+    },
+    true,
+  );
+
+  const end = (ev: PointerEvent) => {
+    const g = gesture;
+    if (!g || ev.pointerId !== g.pointer) return;
+    ev.stopPropagation();
+    container.releasePointerCapture(ev.pointerId);
+    void studio.run(async () => {
+      try {
+        await follow(g, ev.clientX, ev.clientY);
+      } finally {
+        gesture = null;
+      }
+      const model = store.state.model;
+      const clicked = Math.hypot(ev.clientX - g.x, ev.clientY - g.y) < CLICK_PIXELS;
+      if (!model || g.frame < 0 || clicked || g.region.every((x, i) => x === g.start[i])) {
+        await redraw();
+        return;
+      }
+      const forces = [...(model.frames[g.frame].forces ?? [])];
+      if (g.force < 0) forces.push({ f0: [0, 0, 0], region: g.region });
+      else forces[g.force] = { ...forces[g.force], region: g.region };
+      setForces(g.frame, forces, g.force < 0 ? forces.length - 1 : g.force);
+    });
+  };
+  container.addEventListener('pointerup', end, true);
+  container.addEventListener('pointercancel', end, true);
+
+  return {
+    toggleDraw,
+    drawn: () => drawn,
+    handleScreen(h) {
+      const p = handlePoints[h];
+      if (!p) return null;
+      const s = surfaceView.toClient(p);
+      return { x: s.x, y: s.y };
+    },
+    async uvScreen(frame, uv) {
+      const [p] = await api.patchPoints(frame, [uv], studio.solver);
+      const s = surfaceView.toClient(new THREE.Vector3(...p));
+      return { x: s.x, y: s.y };
+    },
+  };
+}

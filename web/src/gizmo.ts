@@ -1,0 +1,152 @@
+// The move gizmo (G): three arrows (and three planes) on the centre of the vertex selection
+// in the frame view; dragging one moves the selection along that axis (or in that plane),
+// one undo step per drag, as a dragged handle does. three.js's TransformControls draws and
+// solves it; its pointer events are fed from here, ahead of the handles' drag tool and the
+// orbit controls (a press on the gizmo reaches neither).
+import * as THREE from 'three';
+import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
+import type { Vec3 } from './api';
+import { boxCentre } from './selection-transform';
+import type { Studio } from './studio';
+
+/** The gizmo's size (TransformControls' unit: about 1/4 of the view's height per 1). */
+const GIZMO_SIZE = 0.9;
+
+export interface Gizmo {
+  toggle(): void;
+  /** A client point on the arrow of `axis` (tests). */
+  arrowScreen(axis: 'x' | 'y' | 'z'): { x: number; y: number } | null;
+}
+
+/** The vertices a selection tool acts on: the selected vertices, else the selected frames'. */
+export function selectionVertices(studio: Studio): number[] {
+  const s = studio.store.state;
+  if (s.selectedVertices.length) return [...s.selectedVertices];
+  if (s.selectedVertex !== null) return [s.selectedVertex];
+  const all = new Set<number>();
+  for (const f of s.selectedFrames) for (const v of s.model?.frames[f]?.vertices ?? []) all.add(v);
+  return [...all].sort((a, b) => a - b);
+}
+
+export function mountGizmo(studio: Studio): Gizmo {
+  const { store, frameView, pump } = studio;
+  const proxy = new THREE.Object3D();
+  frameView.scene.add(proxy);
+  const controls = new TransformControls(frameView.camera);
+  controls.size = GIZMO_SIZE;
+  controls.attach(proxy);
+  // No free (screen-plane) move at the centre: that is a dragged handle's, and the centre
+  // may sit on one.
+  const picker = (controls as unknown as { _gizmo: { picker: { translate: THREE.Object3D } } })._gizmo.picker.translate;
+  for (const o of [...picker.children]) if (o.name === 'XYZ') picker.remove(o);
+  const helper = controls.getHelper();
+  frameView.scene.add(helper);
+  let on = false;
+  const toggleBox = document.querySelector<HTMLInputElement>('[data-testid="gizmo"]');
+
+  /** A drag: the vertices it moves and where they started. */
+  let drag: { moved: number[]; from: Vec3[]; start: THREE.Vector3 } | null = null;
+
+  const place = () => {
+    const model = store.state.model;
+    const vertices = model ? selectionVertices(studio) : [];
+    helper.visible = on && vertices.length > 0;
+    controls.enabled = helper.visible;
+    if (vertices.length && !drag) proxy.position.set(...boxCentre(vertices.map((v) => model!.vertices[v])));
+    frameView.invalidate();
+  };
+  store.subscribe(['model', 'selection', 'vertex'], place);
+  const toggle = () => {
+    on = !on;
+    if (toggleBox) toggleBox.checked = on;
+    place();
+  };
+  toggleBox?.addEventListener('change', () => {
+    if (toggleBox.checked !== on) toggle();
+  });
+
+  controls.addEventListener('change', () => frameView.invalidate());
+  controls.addEventListener('mouseDown', () => {
+    const model = store.state.model!;
+    const moved = selectionVertices(studio);
+    drag = { moved, from: moved.map((v) => [...model.vertices[v]] as Vec3), start: proxy.position.clone() };
+    studio.beginGesture('gizmo');
+  });
+  controls.addEventListener('objectChange', () => {
+    if (!drag || !store.state.model) return;
+    const { moved, from } = drag;
+    const d = proxy.position.clone().sub(drag.start);
+    store.update([], (s) => moved.forEach((v, i) => (s.model!.vertices[v] = [from[i][0] + d.x, from[i][1] + d.y, from[i][2] + d.z])));
+    for (const v of moved) frameView.moveVertex(v, store.state.model!.vertices[v]);
+    const positions = moved.map((v) => [...store.state.model!.vertices[v]] as Vec3);
+    pump.push(() => ({ op: 'move-vertices', vertices: moved, positions }));
+  });
+  controls.addEventListener('mouseUp', () => {
+    drag = null;
+    void studio.endGesture().then(() => store.update(['model'], () => {}));
+  });
+
+  // The pointer, fed to the controls in the capture phase of the view's container (before
+  // the canvas' own listeners: the drag tool and the orbit controls).
+  const container = frameView.container;
+  const pointer = (ev: PointerEvent) => {
+    const rect = frameView.renderer.domElement.getBoundingClientRect();
+    const p = { x: ((ev.clientX - rect.left) / rect.width) * 2 - 1, y: -((ev.clientY - rect.top) / rect.height) * 2 + 1, button: ev.button };
+    // The controls take the pointer as their own listeners make it (typed as the event).
+    return p as unknown as PointerEvent;
+  };
+  let capturing: number | null = null;
+  container.addEventListener(
+    'pointerdown',
+    (ev) => {
+      if (!controls.enabled || ev.button !== 0) return;
+      controls.pointerHover(pointer(ev));
+      if (controls.axis === null) return;
+      ev.stopPropagation();
+      ev.preventDefault();
+      capturing = ev.pointerId;
+      container.setPointerCapture(ev.pointerId);
+      controls.pointerDown(pointer(ev));
+    },
+    true,
+  );
+  container.addEventListener(
+    'pointermove',
+    (ev) => {
+      if (!controls.enabled) return;
+      if (capturing === ev.pointerId) {
+        ev.stopPropagation();
+        controls.pointerMove(pointer(ev));
+      } else if (ev.buttons === 0) {
+        const before = controls.axis;
+        controls.pointerHover(pointer(ev));
+        if (controls.axis !== before) frameView.invalidate();
+      }
+    },
+    true,
+  );
+  const release = (ev: PointerEvent) => {
+    if (capturing !== ev.pointerId) return;
+    ev.stopPropagation();
+    capturing = null;
+    container.releasePointerCapture(ev.pointerId);
+    controls.pointerUp(pointer(ev));
+  };
+  container.addEventListener('pointerup', release, true);
+  container.addEventListener('pointercancel', release, true);
+
+  return {
+    toggle,
+    arrowScreen(axis) {
+      if (!helper.visible) return null;
+      // TransformControls scales its handles so: distance × min(1.9 tan(fov/2) / zoom, 7) × size / 4.
+      const camera = frameView.camera;
+      const factor =
+        proxy.position.distanceTo(camera.position) * Math.min((1.9 * Math.tan((Math.PI * camera.fov) / 360)) / camera.zoom, 7);
+      const along = new THREE.Vector3(axis === 'x' ? 1 : 0, axis === 'y' ? 1 : 0, axis === 'z' ? 1 : 0);
+      // The arrow's picker runs from 0 to 0.6 along its axis: press at 0.45.
+      const s = frameView.toClient(proxy.position.clone().addScaledVector(along, (0.45 * factor * controls.size) / 4));
+      return { x: s.x, y: s.y };
+    },
+  };
+}

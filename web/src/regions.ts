@@ -1,0 +1,73 @@
+// Force regions [u0, u1, v0, v1] placed and changed by hand on a patch (no DOM: web/test runs
+// it in Node): a rectangle from two picked parameter points, a corner dragged, the whole
+// region moved; always inside [0, 1]² and never thinner than MIN_REGION.
+import type { Region } from './api';
+
+/** The narrowest region side a drag makes (the server refuses an empty one). */
+export const MIN_REGION = 0.02;
+/** Decimals a region bound is kept to (the file stays readable; 1e-4 of a patch side). */
+const REGION_DECIMALS = 4;
+
+export type UV = readonly [number, number];
+
+const clamp01 = (x: number) => Math.min(1, Math.max(0, x));
+const round = (x: number) => Number(x.toFixed(REGION_DECIMALS));
+
+/** [lo, hi] from two values, at least MIN_REGION apart and inside [0, 1] (widened away from
+ * the side it touches). */
+function span(a: number, b: number): [number, number] {
+  let lo = clamp01(Math.min(a, b)), hi = clamp01(Math.max(a, b));
+  if (hi - lo < MIN_REGION) {
+    const mid = Math.min(1 - MIN_REGION / 2, Math.max(MIN_REGION / 2, (lo + hi) / 2));
+    lo = mid - MIN_REGION / 2;
+    hi = mid + MIN_REGION / 2;
+  }
+  return [round(lo), round(hi)];
+}
+
+/** The region spanned by two picked points of a patch (in any order). */
+export function regionFromCorners(a: UV, b: UV): Region {
+  const [u0, u1] = span(a[0], b[0]);
+  const [v0, v1] = span(a[1], b[1]);
+  return [u0, u1, v0, v1];
+}
+
+/** The corners of a region, in the order handles are numbered: (u0,v0), (u1,v0), (u1,v1), (u0,v1). */
+export function regionCorners(r: Region): UV[] {
+  return [
+    [r[0], r[2]],
+    [r[1], r[2]],
+    [r[1], r[3]],
+    [r[0], r[3]],
+  ];
+}
+
+/** The region with corner `corner` (regionCorners' numbering) dragged to `to`; the opposite
+ * corner stays. */
+export function resizeRegion(r: Region, corner: number, to: UV): Region {
+  const opposite = regionCorners(r)[(corner + 2) % 4];
+  return regionFromCorners(opposite, to);
+}
+
+/** The region moved by the drag from `from` to `to`, kept whole inside the patch. */
+export function moveRegion(r: Region, from: UV, to: UV): Region {
+  const w = r[1] - r[0], h = r[3] - r[2];
+  const u0 = Math.min(1 - w, Math.max(0, r[0] + to[0] - from[0]));
+  const v0 = Math.min(1 - h, Math.max(0, r[2] + to[1] - from[1]));
+  return [round(u0), round(u0 + w), round(v0), round(v0 + h)];
+}
+
+/** Points round a region's border, `perSide` a side, counter-clockwise from (u0, v0): what
+ * the surface view draws (each side's last point is the next side's first). */
+export function regionOutline(r: Region, perSide: number): UV[] {
+  const corners = regionCorners(r);
+  const out: UV[] = [];
+  for (let s = 0; s < 4; ++s) {
+    const a = corners[s], b = corners[(s + 1) % 4];
+    for (let i = 0; i < perSide; ++i) {
+      const t = i / perSide;
+      out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+    }
+  }
+  return out;
+}

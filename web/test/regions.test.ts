@@ -1,0 +1,36 @@
+// Force regions drawn and changed by hand on a patch: always inside [0, 1]², never empty.
+import { describe, expect, it } from 'vitest';
+import { MIN_REGION, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from '../src/regions';
+
+describe('force regions from picked points', () => {
+  it('spans the two picked points in either order', () => {
+    expect(regionFromCorners([0.7, 0.2], [0.3, 0.6])).toEqual([0.3, 0.7, 0.2, 0.6]);
+    expect(regionFromCorners([0.3, 0.6], [0.7, 0.2])).toEqual([0.3, 0.7, 0.2, 0.6]);
+  });
+
+  it('clamps to the patch and widens a click to the narrowest region', () => {
+    expect(regionFromCorners([-0.2, 0.5], [1.3, 0.9])).toEqual([0, 1, 0.5, 0.9]);
+    const r = regionFromCorners([0.5, 1], [0.5, 1]);
+    expect(r[1] - r[0]).toBeCloseTo(MIN_REGION, 12);
+    expect(r[3]).toBe(1); // against the side it touches, still inside
+    expect(r[3] - r[2]).toBeCloseTo(MIN_REGION, 12);
+  });
+
+  it('resizes by a corner, the opposite one staying', () => {
+    const r = [0.2, 0.4, 0.1, 0.5] as const;
+    expect(resizeRegion([...r], 2, [0.9, 0.8])).toEqual([0.2, 0.9, 0.1, 0.8]);
+    // Dragged past the opposite corner: the region turns over, still valid.
+    expect(resizeRegion([...r], 0, [0.6, 0.7])).toEqual([0.4, 0.6, 0.5, 0.7]);
+    expect(regionCorners([...r])[1]).toEqual([0.4, 0.1]);
+  });
+
+  it('moves whole, stopping at the sides of the patch', () => {
+    expect(moveRegion([0.2, 0.4, 0.1, 0.5], [0.3, 0.3], [0.5, 0.2])).toEqual([0.4, 0.6, 0, 0.4]);
+    expect(moveRegion([0.2, 0.4, 0.1, 0.5], [0, 0], [2, 2])).toEqual([0.8, 1, 0.6, 1]);
+  });
+
+  it('outlines the border counter-clockwise from (u0, v0)', () => {
+    const o = regionOutline([0, 1, 0, 0.5], 2);
+    expect(o).toEqual([[0, 0], [0.5, 0], [1, 0], [1, 0.25], [1, 0.5], [0.5, 0.5], [0, 0.5], [0, 0.25]]);
+  });
+});

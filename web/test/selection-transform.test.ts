@@ -1,0 +1,49 @@
+// Scaling and turning the vertex selection about its centre.
+import { describe, expect, it } from 'vitest';
+import type { Vec3 } from '../src/api';
+import { boxCentre, rotatedAbout, scaledAbout } from '../src/selection-transform';
+
+/** Rounding of a few operations on numbers near 1. */
+const ROUNDING = 1e-12;
+
+const square: Vec3[] = [
+  [1, 1, 2],
+  [3, 1, 2],
+  [3, 5, 2],
+  [1, 5, 2],
+];
+
+const close = (a: readonly Vec3[], b: readonly Vec3[]) =>
+  a.forEach((p, i) => p.forEach((x, c) => expect(x).toBeCloseTo(b[i][c], 12)));
+
+describe('selection transforms', () => {
+  it('pivots about the bounding box centre', () => {
+    expect(boxCentre(square)).toEqual([2, 3, 2]);
+    expect(boxCentre([[0, 0, 0], [0, 0, 0], [4, 0, 0]])).toEqual([2, 0, 0]); // not the mean
+  });
+
+  it('scales distances from the centre by the factor and keeps the centre', () => {
+    const c = boxCentre(square);
+    const s = scaledAbout(square, c, 1.5);
+    expect(boxCentre(s)).toEqual(c);
+    expect(s[2][0] - s[0][0]).toBeCloseTo(3, 12);
+    expect(s[2][1] - s[0][1]).toBeCloseTo(6, 12);
+    close(scaledAbout(s, c, 1 / 1.5), square);
+  });
+
+  it('turns right-handed about the axis through the centre, exactly for quarter turns', () => {
+    const c = boxCentre(square);
+    const r = rotatedAbout(square, c, 'z', 90);
+    // (1, 1) is (-1, -2) from the centre: a quarter turn about z takes it to (2, -1).
+    expect(r[0]).toEqual([4, 2, 2]);
+    expect(r.every((p) => p[2] === 2)).toBe(true);
+    // Turns keep distances, and four of 90° (or 3 × 120° about x) come back.
+    let back = square;
+    for (let i = 0; i < 3; ++i) back = rotatedAbout(back, c, 'x', 120);
+    close(back, square);
+    const d = (p: Vec3) => Math.hypot(p[0] - c[0], p[1] - c[1], p[2] - c[2]);
+    rotatedAbout(square, c, 'y', 33).forEach((p, i) => expect(Math.abs(d(p) - d(square[i]))).toBeLessThan(ROUNDING));
+    // About y, z goes toward x.
+    expect(rotatedAbout([[0, 0, 1]], [0, 0, 0], 'y', 90)[0]).toEqual([1, 0, 0]);
+  });
+});
