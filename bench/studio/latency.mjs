@@ -6,12 +6,13 @@
 // requestAnimationFrame callback after the surface mesh of that edit was applied.
 //
 // Usage: node bench/studio/latency.mjs [--cli build/pdesurf] [--steps 200] [--stream 300] [--json out.json]
-//          [--model examples/mug.json] [--resolution 16] [--preview 1] [--releases 5]
+//          [--model examples/mug.json] [--resolution 16] [--preview 1] [--releases 5] [--query K=V]
 //   (scripts/run_bench_studio runs it with --steps 100 --stream 0; later options win)
 //   --model: a model file instead of the generated sheet (the vertex dragged is the one
 //   nearest the frame view's centre on screen); --preview 0: the page without its adaptive
 //   preview (?preview=0), the baseline; --releases N: N more drags, each timed from the
-//   button's release to the first frame drawn at full resolution.
+//   button's release to the first frame drawn at full resolution; --query: options added to
+//   the page's URL (aa=1, say).
 //
 // Two runs: "step" moves the pointer once, waits until that edit's mesh is on screen, then
 // idles 50 ms (one edit at a time: the latency of one edit); "stream" moves the pointer
