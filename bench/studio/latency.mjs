@@ -6,12 +6,13 @@
 // requestAnimationFrame callback after the surface mesh of that edit was applied.
 //
 // Usage: node bench/studio/latency.mjs [--cli build/pdesurf] [--steps 200] [--stream 300] [--json out.json]
-//          [--model examples/mug.json] [--resolution 16] [--preview 1] [--releases 5]
+//          [--model examples/mug.json] [--resolution 16] [--preview 1] [--releases 5] [--query K=V]
 //   (scripts/run_bench_studio runs it with --steps 100 --stream 0; later options win)
 //   --model: a model file instead of the generated sheet (the vertex dragged is the one
 //   nearest the frame view's centre on screen); --preview 0: the page without its adaptive
 //   preview (?preview=0), the baseline; --releases N: N more drags, each timed from the
-//   button's release to the first frame drawn at full resolution.
+//   button's release to the first frame drawn at full resolution; --query: options added to
+//   the page's URL (aa=1, say).
 //
 // Two runs: "step" moves the pointer once, waits until that edit's mesh is on screen, then
 // idles 50 ms (one edit at a time: the latency of one edit); "stream" moves the pointer
@@ -51,6 +52,7 @@ const ROWS = Number(opt('rows', 25)), COLS = Number(opt('cols', 40));
 const MODEL = opt('model', '');
 const PREVIEW = opt('preview', '1') !== '0';
 const RELEASES = Number(opt('releases', 5));
+const QUERY = opt('query', '');
 
 // Same launch as e2e/playwright.config.ts.
 const LAUNCH = {
@@ -84,8 +86,18 @@ async function startStudio(model) {
 // request (sent, headers, body received, "applied" = the task after the body, when the
 // page's continuation has parsed it and called setMesh).
 function instrument() {
-  const T = (window.__bench = { edits: [], meshes: [], pointers: [], frames: [], lastMesh: undefined, on: false });
+  const T = (window.__bench = { edits: [], meshes: [], pointers: [], frames: [], tasks: [], lastMesh: undefined, on: false });
   const realFetch = window.fetch.bind(window);
+  // Resource timing of every request (the network side of a round trip), not only 250.
+  performance.setResourceTimingBufferSize(1e6);
+  // Every animation-frame callback's start and end (the page's renders run in them).
+  const raf = (T.raf = window.requestAnimationFrame.bind(window));
+  window.requestAnimationFrame = (cb) =>
+    raf((ts) => {
+      const t0 = performance.now();
+      cb(ts);
+      if (T.on) T.tasks.push({ kind: 'raf', t0, t1: performance.now() });
+    });
   const afterTasks = (fn) => {
     const ch = new MessageChannel();
     ch.port1.onmessage = () => fn();
@@ -165,9 +177,9 @@ function watchFrames() {
       T.frames.push(f);
       T.lastMesh = k;
     }
-    requestAnimationFrame(loop);
+    T.raf(loop);
   };
-  requestAnimationFrame(loop);
+  T.raf(loop);
 }
 
 const pct = (xs, p) => {
@@ -185,7 +197,7 @@ async function main() {
   else execFileSync('python3', [path.join(HERE, 'make_model.py'), model, String(ROWS), String(COLS)], { stdio: 'ignore' });
   const started = await startStudio(model);
   const { child, origin, token } = started;
-  const url = PREVIEW ? started.url : `${started.url}&preview=0`;
+  const url = `${started.url}${PREVIEW ? '' : '&preview=0'}${QUERY ? `&${QUERY}` : ''}`;
   const browser = await chromium.launch(LAUNCH);
   const loadStart = loadavg();
   const results = { loadStart, model: MODEL ? { file: MODEL } : { rows: ROWS, cols: COLS, frames: ROWS * COLS }, resolution: Number(RESOLUTION), preview: PREVIEW };
@@ -214,6 +226,9 @@ async function main() {
       requestAnimationFrame(tick);
     })).then((d) => stats(d));
     console.error(`idle frame interval: ${fmt(results.idleFrame)}`);
+    // One draw of each view, waited for (render, then read a pixel back), at rest.
+    const draws = await page.evaluate(() => window.__studio.renderTimes(7));
+    results.draw = { frameView: stats(draws.frames), surfaceView: stats(draws.surface) };
 
     // A vertex in the middle of the sheet, on screen in the frame view.
     const lattice = { i: ROWS, j: 2 * Math.floor(COLS / 2) }; // an even-even lattice point
@@ -257,7 +272,7 @@ async function main() {
     await page.evaluate(() => { Object.assign(window.__bench, { on: true, finish: true, edits: [], meshes: [], pointers: [], frames: [] }); });
     const steps = [];
     for (let k = 0; k < STEPS; ++k) {
-      await page.evaluate(() => { const T = window.__bench; T.edits = []; T.meshes = []; T.pointers = []; T.frames = []; });
+      await page.evaluate(() => { const T = window.__bench; T.edits = []; T.meshes = []; T.pointers = []; T.frames = []; T.tasks = []; });
       const q = offsets(k + 5);
       await page.mouse.move(q.x, q.y);
       await upToDate();
@@ -269,8 +284,14 @@ async function main() {
           const e = T.edits[T.edits.length - 1];
           const m = e && T.meshes.find((x) => x.revision === e.revision);
           const f = e && T.frames.find((x) => x.revision === e.revision);
-          if (m && m.applied !== undefined && f) resolve({ pointers: T.pointers, edits: T.edits, m, f });
-          else requestAnimationFrame(check);
+          // The network side of the edit's round trip (resource timing), and the page's
+          // animation-frame callbacks from the pointer event to the answer's headers.
+          const net = e && performance.getEntriesByType('resource').filter((x) => x.name.includes('/api/edit')).pop();
+          if (m && m.applied !== undefined && f && net) {
+            performance.clearResourceTimings();
+            const rt = { start: net.startTime, request: net.requestStart, response: net.responseStart, end: net.responseEnd };
+            resolve({ pointers: T.pointers, edits: T.edits, m, f, rt, tasks: T.tasks });
+          } else T.raf(check);
         };
         check();
       }));
@@ -278,8 +299,13 @@ async function main() {
       if (r.pointers.length !== 1 || r.edits.length !== 1) {
         steps.push({ skipped: true, counts: [r.pointers.length, r.edits.length] });
       } else {
-        const [pt, e, m, f] = [r.pointers[0], r.edits[0], r.m, r.f];
+        const [pt, e, m, f, rt] = [r.pointers[0], r.edits[0], r.m, r.f, r.rt];
+        // Main-thread time in animation-frame callbacks (the page's renders) while the
+        // edit was in flight.
+        const busy = r.tasks.reduce((sum, t) => sum + Math.max(0, Math.min(t.t1, e.headers) - Math.max(t.t0, e.sent)), 0);
         steps.push({
+          toRequest: rt.request - e.sent, serverWait: rt.response - rt.request, toHeaders: e.headers - rt.response,
+          rafBusy: busy,
           total: f.raf - pt.t, fromStamp: f.raf - pt.stamp, drawn: f.drawn - pt.t,
           toEdit: e.sent - pt.t, editRtt: e.headers - e.sent, toMesh: m.sent - e.headers,
           meshWait: m.headers - m.sent, meshBody: m.body - m.headers, apply: m.applied - m.body,
@@ -294,7 +320,7 @@ async function main() {
     const ok = steps.filter((s) => !s.skipped);
     const col = (k) => ok.map((s) => s[k]);
     results.step = { steps: STEPS, timed: ok.length, skipped: steps.length - ok.length };
-    for (const k of ['total', 'fromStamp', 'drawn', 'toEdit', 'editRtt', 'toMesh', 'meshWait', 'meshBody', 'bodyToFrame', 'apply', 'toFrame', 'gpu', 'solveMs', 'tessellateMs'])
+    for (const k of ['total', 'fromStamp', 'drawn', 'toEdit', 'editRtt', 'toRequest', 'serverWait', 'toHeaders', 'rafBusy', 'toMesh', 'meshWait', 'meshBody', 'bodyToFrame', 'apply', 'toFrame', 'gpu', 'solveMs', 'tessellateMs'])
       results.step[k] = stats(col(k));
     results.step.meshBytes = ok.length ? ok[0].bytes : 0;
 
@@ -378,6 +404,10 @@ async function main() {
   const row = (label, k) => console.log(`    ${label.padEnd(44)} ${st[k].p50.toFixed(2).padStart(7)} ${st[k].p95.toFixed(2).padStart(7)} ms`);
   row('pointer -> POST /api/edit sent', 'toEdit');
   row('edit round trip (with the mesh, ?mesh=1)', 'editRtt');
+  row('  fetch() -> request sent (resource timing)', 'toRequest');
+  row('  request sent -> response starts (server)', 'serverWait');
+  row('  response starts -> page has the headers', 'toHeaders');
+  row('  page rAF callbacks (renders) meanwhile', 'rafBusy');
   row('edit answered -> GET /api/mesh sent', 'toMesh');
   row('mesh request -> headers (server solve+tess)', 'meshWait');
   row('  of which X-Solve-Ms', 'solveMs');
@@ -385,6 +415,8 @@ async function main() {
   row('mesh body transfer', 'meshBody');
   row('body read -> first rAF with it (parse, setMesh)', 'bodyToFrame');
   row('rAF -> drawn (gl.finish)', 'gpu');
+  console.log(`  one draw at rest, waited for (renderTimes): frame view ${fmt(results.draw.frameView)}`);
+  console.log(`                                            surface view ${fmt(results.draw.surfaceView)}`);
   const sm = results.stream;
   if (sm) console.log(`\n60 Hz drag (${sm.pointerEvents} pointer events in ${sm.seconds.toFixed(1)} s, ${sm.edits} edits, ` +
     `${sm.newFrames} new surface frames = ${sm.meshesPerSecond.toFixed(1)}/s):`);

@@ -260,6 +260,26 @@ test.describe('analysis on the mug', () => {
     expect(points.length / 3).toBe(62 * 4 * (24 - 1) * 2);
   });
 
+  test('a drag redraws the frame view only around the moved handle, the pixels of a whole draw', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    const regions = await hooks(page, 'frameRegionDraws');
+    const p = await hooks(page, 'vertexScreen', 40);
+    await page.mouse.move(p.x, p.y);
+    await page.mouse.down();
+    for (let i = 1; i <= 6; ++i) {
+      await page.mouse.move(p.x + 5 * i, p.y - 3 * i);
+      await settle(page);
+      // Drawn in the next frame; then compared with a whole draw of the same state.
+      await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+      const { differ, pixels } = await hooks(page, 'frameRedrawDifference');
+      expect(pixels).toBeGreaterThan(100_000);
+      expect(differ).toBe(0);
+    }
+    await page.mouse.up();
+    await settle(page);
+    expect(await hooks(page, 'frameRegionDraws')).toBeGreaterThan(regions);
+  });
+
   test('a drag shows a coarser preview and returns to full resolution on release', async ({ page, studio }) => {
     await openStudio(page, studio);
     expect((await hooks(page, 'state')).resolution).toBe(24);

@@ -5,6 +5,8 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { MeshData, Model, Vec3 } from './api';
 import { curvatureColors, symmetricRange, vertexCurvatures } from './curvature';
+import { EMPTY_RECT, addPoint, pointsIn, segmentsIn } from './damage';
+import type { Rect, ScreenPoints } from './damage';
 import { PREVIEW_PIXEL_SCALE } from './preview';
 
 const FRAME_EDGES = 8;
@@ -69,12 +71,22 @@ class AxisGizmo {
     }
   }
 
-  render(renderer: THREE.WebGLRenderer, main: THREE.Camera): void {
+  /** Where the gizmo is drawn (CSS pixels from the bottom left), null when the view is
+   * too small for it. */
+  static area(renderer: THREE.WebGLRenderer): THREE.Box2 | null {
     const size = renderer.getSize(new THREE.Vector2());
-    if (size.x < 3 * GIZMO_PIXELS || size.y < 3 * GIZMO_PIXELS) return;
+    if (size.x < 3 * GIZMO_PIXELS || size.y < 3 * GIZMO_PIXELS) return null;
+    const min = new THREE.Vector2(size.x - GIZMO_PIXELS - 6, 6);
+    return new THREE.Box2(min, min.clone().addScalar(GIZMO_PIXELS));
+  }
+
+  render(renderer: THREE.WebGLRenderer, main: THREE.Camera): void {
+    const area = AxisGizmo.area(renderer);
+    if (!area) return;
+    const size = renderer.getSize(new THREE.Vector2());
     this.camera.quaternion.copy(main.quaternion);
     this.camera.position.set(0, 0, 3).applyQuaternion(main.quaternion);
-    const x = size.x - GIZMO_PIXELS - 6, y = 6;
+    const { x, y } = area.min;
     const autoClear = renderer.autoClear;
     renderer.autoClear = false;
     renderer.setScissorTest(true);
@@ -96,8 +108,13 @@ export class Viewport {
   controls!: OrbitControls;
   private readonly gizmo = new AxisGizmo();
 
-  constructor(readonly container: HTMLElement) {
-    this.renderer = new THREE.WebGLRenderer({ antialias: ANTIALIAS });
+  /** `preserve`: the drawing buffer keeps its pixels between frames (a view that redraws
+   * only a region: FrameView). */
+  constructor(
+    readonly container: HTMLElement,
+    preserve = false,
+  ) {
+    this.renderer = new THREE.WebGLRenderer({ antialias: ANTIALIAS, preserveDrawingBuffer: preserve });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.renderer.setClearColor(0xf4f5f7);
     this.container.appendChild(this.renderer.domElement);
@@ -204,7 +221,7 @@ export class Viewport {
     this.invalidate();
   }
 
-  private dirty = true;
+  protected dirty = true;
 
   /** Asks for a render in the next animation frame (the views draw only on change). */
   invalidate(): void {
@@ -214,7 +231,7 @@ export class Viewport {
   /** Renders if anything changed since the last render (the camera moved, or the scene
    * was invalidated); returns whether it rendered. */
   renderIfNeeded(): boolean {
-    if (this.controls.update()) this.dirty = true; // damping still moving the camera
+    if (this.controls.update()) this.invalidate(); // damping still moving the camera
     if (!this.dirty) return false;
     this.dirty = false;
     this.draw();
@@ -222,8 +239,12 @@ export class Viewport {
   }
 
   /** The scene, then the axis gizmo in the bottom-right corner. */
-  private draw(): void {
+  protected draw(): void {
     this.renderer.render(this.scene, this.camera);
+    this.drawGizmo();
+  }
+
+  protected drawGizmo(): void {
     this.gizmo.render(this.renderer, this.camera);
   }
 
@@ -299,6 +320,8 @@ export class FrameLines {
   // The line vertices ("slots") of each model vertex, CSR: slots[first[i] .. first[i+1]).
   private first = new Uint32Array(0);
   private slots = new Uint32Array(0);
+  /** The model vertex of each line vertex (segment m joins line vertices 2m and 2m + 1). */
+  lineVertex = new Uint32Array(0);
 
   constructor(opacity = 1) {
     const material = new THREE.LineBasicMaterial({
@@ -346,14 +369,22 @@ export class FrameLines {
     for (let i = 0; i < model.vertices.length; ++i) first[i + 1] += first[i];
     const fill = first.slice(0, -1);
     const slots = new Uint32Array(first[model.vertices.length]);
+    const lineVertex = new Uint32Array(slots.length);
     let k = 0;
     for (const frame of model.frames)
-      for (let e = 0; e < FRAME_EDGES; ++e) {
-        slots[fill[frame.vertices[e]]++] = k++;
-        slots[fill[frame.vertices[(e + 1) % FRAME_EDGES]]++] = k++;
-      }
+      for (let e = 0; e < FRAME_EDGES; ++e)
+        for (const v of [frame.vertices[e], frame.vertices[(e + 1) % FRAME_EDGES]]) {
+          slots[fill[v]++] = k;
+          lineVertex[k++] = v;
+        }
     this.first = first;
     this.slots = slots;
+    this.lineVertex = lineVertex;
+  }
+
+  /** Calls `fn` with the other end of every segment at model vertex `vertex`. */
+  neighbours(vertex: number, fn: (other: number) => void): void {
+    for (let s = this.first[vertex]; s < this.first[vertex + 1]; ++s) fn(this.lineVertex[this.slots[s] ^ 1]);
   }
 
   /** Moves one vertex of the model last given to update(): only its line ends change. */
@@ -453,7 +484,8 @@ const HANDLE_SELECTED_PIXELS = 14;
  * vertex model costs 3,000 points, not 3,000 spheres). */
 class Handles {
   readonly object: THREE.Points;
-  private positions = new Float32Array(0);
+  /** Where each handle is drawn (xyz per model vertex). */
+  positions = new Float32Array(0);
   private sizes = new Float32Array(0);
   private colors = new Float32Array(0);
 
@@ -495,10 +527,79 @@ class Handles {
   }
 }
 
-/** The left view: vertex handles and frame polylines, with screen-space picking. */
+/** Some of the primitives of a LineSegments' or Points' object, drawn with its attributes
+ * and material (a region's redraw): an index buffer with room for every vertex, of which
+ * the first `count` are drawn. */
+class Subset {
+  readonly object: THREE.LineSegments | THREE.Points;
+  private indices = new Uint32Array(0);
+
+  constructor(private readonly source: THREE.LineSegments | THREE.Points) {
+    const geometry = new THREE.BufferGeometry();
+    this.object =
+      source instanceof THREE.Points
+        ? new THREE.Points(geometry, source.material)
+        : new THREE.LineSegments(geometry, source.material);
+    this.object.renderOrder = source.renderOrder;
+    this.object.frustumCulled = false;
+    this.object.visible = false;
+  }
+
+  /** Where to write the indices drawn (room for every vertex of the source). */
+  buffer(): Uint32Array {
+    const count = this.source.geometry.getAttribute('position')?.count ?? 0;
+    if (this.indices.length !== count) {
+      // A new index buffer; the old geometry's shared attributes are the source's: only its
+      // own index is freed.
+      const old = this.object.geometry;
+      for (const name of Object.keys(old.attributes)) old.deleteAttribute(name);
+      old.dispose();
+      this.indices = new Uint32Array(count);
+      this.object.geometry = new THREE.BufferGeometry().setIndex(new THREE.BufferAttribute(this.indices, 1));
+    }
+    return this.indices;
+  }
+
+  /** Draws the first `count` indices of buffer() with the source's attributes as they are. */
+  use(count: number): void {
+    const g = this.object.geometry;
+    for (const [name, attribute] of Object.entries(this.source.geometry.attributes))
+      if (g.getAttribute(name) !== attribute) g.setAttribute(name, attribute);
+    const index = g.getIndex()!;
+    index.clearUpdateRanges();
+    if (count > 0) index.addUpdateRange(0, count);
+    index.needsUpdate = true;
+    g.setDrawRange(0, count);
+  }
+}
+
+/** Pixels (CSS) around a moved handle's segments in which they may colour pixels (1 px
+ * lines, rounding to pixels). */
+const LINE_PAD_PIXELS = 2;
+/** Half the side of the square a handle may colour (CSS pixels): a selected handle's whole
+ * diameter, a margin for rounding and the pixel ratio. */
+const HANDLE_REACH_PIXELS = HANDLE_SELECTED_PIXELS;
+/** A drag's region redraw is done whole above this share of the view's pixels (its
+ * primitives are then most of the view's anyway). */
+const REGION_MAX_SHARE = 0.25;
+
+/** The left view: vertex handles and frame polylines, with screen-space picking. During a
+ * drag only the region of the moved handles is redrawn (damage.ts: a whole draw of a large
+ * model holds the page's main thread while the edit's answer waits). */
 export class FrameView extends Viewport {
   readonly lines = new FrameLines();
   private readonly handles: Handles;
+  private readonly lineSubset: Subset;
+  private readonly handleSubset: Subset;
+  /** The whole view is to be drawn (something else than handles moved changed). */
+  private whole = true;
+  /** The moved handles' region to draw again (CSS pixels from the bottom left), if any. */
+  private damage: Rect | null = null;
+  /** Each handle on screen as last drawn; null until asked for after a whole draw (the
+   * camera may have changed). */
+  private screen: ScreenPoints | null = null;
+  /** Region draws since the page loaded (tests). */
+  regionDraws = 0;
   private model: Model | null = null;
   /** A view-only model's curves and spines (hidden while a vertex-frame model is shown). */
   private readonly curves = new THREE.LineSegments(
@@ -511,10 +612,12 @@ export class FrameView extends Viewport {
   );
 
   constructor(container: HTMLElement) {
-    super(container);
+    super(container, true); // the pixels outside a drag's region are kept
     this.handles = new Handles(this.renderer.getPixelRatio());
-    this.scene.add(this.lines.object);
-    this.scene.add(this.handles.object);
+    this.lineSubset = new Subset(this.lines.object);
+    this.handleSubset = new Subset(this.handles.object);
+    this.scene.add(this.lines.object, this.lineSubset.object);
+    this.scene.add(this.handles.object, this.handleSubset.object);
     this.scene.add(this.curves, this.spines);
     const grid = new THREE.GridHelper(1, 10, 0xc9ced6, 0xdfe3e8);
     grid.rotation.x = Math.PI / 2;
@@ -570,11 +673,107 @@ export class FrameView extends Viewport {
     grid.position.set(...box.getCenter(new THREE.Vector3()).toArray().slice(0, 2) as [number, number], box.min.z);
   }
 
-  /** Moves one vertex of the model shown (a drag): its handle and its line ends. */
+  /** Moves one vertex of the model shown (a drag): its handle and its line ends, and the
+   * region they covered and cover now is drawn again in the next frame. */
   moveVertex(vertex: number, p: Vec3): void {
+    const damage = this.whole ? null : (this.damage ?? { ...EMPTY_RECT });
+    if (damage) this.addDamage(damage, vertex);
     this.handles.moveVertex(vertex, p);
     this.lines.moveVertex(vertex, p);
-    this.invalidate();
+    if (damage) {
+      this.project(this.screenPoints(), vertex);
+      this.addDamage(damage, vertex);
+      this.damage = damage;
+    }
+    this.dirty = true;
+  }
+
+  override invalidate(): void {
+    super.invalidate();
+    this.whole = true;
+  }
+
+  /** Grows `rect` by what vertex `vertex`'s handle and segments cover on screen now. */
+  private addDamage(rect: Rect, vertex: number): void {
+    const screen = this.screenPoints();
+    addPoint(rect, screen, vertex, HANDLE_REACH_PIXELS);
+    this.lines.neighbours(vertex, (other) => addPoint(rect, screen, other, LINE_PAD_PIXELS));
+  }
+
+  /** The handles on screen (computed after a whole draw, then kept up by moveVertex). */
+  private screenPoints(): ScreenPoints {
+    if (this.screen && this.screen.wild.length === this.handles.positions.length / 3) return this.screen;
+    const n = this.handles.positions.length / 3;
+    this.screen = { xy: new Float32Array(2 * n), wild: new Uint8Array(n) };
+    for (let i = 0; i < n; ++i) this.project(this.screen, i);
+    return this.screen;
+  }
+
+  private readonly projected = new THREE.Vector3();
+
+  /** Handle i on screen, as the camera of the last draw sees it. */
+  private project(screen: ScreenPoints, i: number): void {
+    const q = this.projected.fromArray(this.handles.positions, 3 * i).project(this.camera);
+    const size = this.renderer.getSize(new THREE.Vector2());
+    screen.xy[2 * i] = ((q.x + 1) / 2) * size.x;
+    screen.xy[2 * i + 1] = ((q.y + 1) / 2) * size.y;
+    // outside the depth range (behind the camera, say) its lines' pixels are not bounded
+    screen.wild[i] = q.z >= -1 && q.z <= 1 && Number.isFinite(q.x + q.y) ? 0 : 1;
+  }
+
+  /** The damaged region to draw, in whole pixels inside the view (with the axis gizmo
+   * when it meets it), or null to draw the whole view. */
+  private region(): Rect | null {
+    const d = this.damage;
+    if (!d) return null;
+    const size = this.renderer.getSize(new THREE.Vector2());
+    const r = {
+      x0: Math.max(0, Math.floor(d.x0)),
+      y0: Math.max(0, Math.floor(d.y0)),
+      x1: Math.min(size.x, Math.ceil(d.x1)),
+      y1: Math.min(size.y, Math.ceil(d.y1)),
+    };
+    if (r.x1 <= r.x0 || r.y1 <= r.y0) return null;
+    const gizmo = AxisGizmo.area(this.renderer);
+    if (gizmo && gizmo.min.x <= r.x1 && gizmo.max.x >= r.x0 && gizmo.min.y <= r.y1 && gizmo.max.y >= r.y0) {
+      r.x0 = Math.min(r.x0, gizmo.min.x);
+      r.y0 = Math.min(r.y0, gizmo.min.y);
+      r.x1 = Math.max(r.x1, gizmo.max.x);
+      r.y1 = Math.max(r.y1, gizmo.max.y);
+    }
+    return (r.x1 - r.x0) * (r.y1 - r.y0) <= REGION_MAX_SHARE * size.x * size.y ? r : null;
+  }
+
+  protected override draw(): void {
+    const region = this.whole ? null : this.region();
+    this.whole = false;
+    this.damage = null;
+    if (!region) {
+      this.screen = null;
+      super.draw();
+      return;
+    }
+    // Only the segments and handles that may colour a pixel of the region, in their order,
+    // over the region cleared: the pixels a whole draw would give there.
+    const screen = this.screenPoints();
+    const lines = this.lineSubset.buffer();
+    this.lineSubset.use(segmentsIn(screen, this.lines.lineVertex, region, LINE_PAD_PIXELS, lines));
+    const handles = this.handleSubset.buffer();
+    this.handleSubset.use(pointsIn(screen, screen.wild.length, region, HANDLE_REACH_PIXELS, handles));
+    const pairs = [
+      [this.lines.object, this.lineSubset.object],
+      [this.handles.object, this.handleSubset.object],
+    ] as const;
+    for (const [whole, some] of pairs) [some.visible, whole.visible] = [whole.visible, false];
+    this.renderer.setScissor(region.x0, region.y0, region.x1 - region.x0, region.y1 - region.y0);
+    this.renderer.setScissorTest(true);
+    this.renderer.render(this.scene, this.camera);
+    this.renderer.setScissorTest(false);
+    for (const [whole, some] of pairs) [whole.visible, some.visible] = [some.visible, false];
+    const gizmo = AxisGizmo.area(this.renderer);
+    if (gizmo && gizmo.min.x >= region.x0 && gizmo.max.x <= region.x1 && gizmo.min.y >= region.y0 && gizmo.max.y <= region.y1)
+      this.drawGizmo();
+    ++this.regionDraws;
   }
 
   /** The vertex whose handle is nearest a client point (within `pixels`), front-most first. */

@@ -32,6 +32,26 @@ export function installTestHooks(studio: Studio): void {
         a.length === b.length && Array.prototype.every.call(a, (x: number, i: number) => x === b[i]);
       return same(full.positions, m.positions) && same(full.normals, m.normals) && same(full.indices, m.indices);
     },
+    /** The frame view's region draws so far (a drag's moved handles: scene.ts). */
+    frameRegionDraws: () => frameView.regionDraws,
+    /** Pixels of the frame view as drawn, then as a whole draw gives them now: how many
+     * differ (its drawing buffer is preserved: region draws keep the rest). */
+    frameRedrawDifference: async () => {
+      const gl = frameView.renderer.getContext();
+      const read = () => {
+        const pixels = new Uint8Array(4 * gl.drawingBufferWidth * gl.drawingBufferHeight);
+        gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+        return pixels;
+      };
+      const shown = read();
+      frameView.invalidate();
+      frameView.renderIfNeeded();
+      const whole = read();
+      let differ = 0;
+      for (let i = 0; i < shown.length; i += 4)
+        if (shown[i] !== whole[i] || shown[i + 1] !== whole[i + 1] || shown[i + 2] !== whole[i + 2]) ++differ;
+      return { differ, pixels: shown.length / 4 };
+    },
     renderTimes: (n: number) => ({
       frames: Array.from({ length: n }, () => frameView.renderTimed()),
       surface: Array.from({ length: n }, () => surfaceView.renderTimed()),
