@@ -39,9 +39,12 @@ async function save(page: Page): Promise<void> {
   await expect(page.getByTestId('dirty')).toBeHidden();
 }
 
-async function undo(page: Page): Promise<void> {
+/** Ctrl+Z, then waits until the server has undone (a save sent sooner could overtake it). */
+async function undo(page: Page, studio: Studio): Promise<void> {
   await expect(page.getByTestId('undo')).toBeEnabled();
+  const before = (await studio.state()).undo;
   await page.keyboard.press('Control+z');
+  await expect.poll(async () => (await studio.state()).undo).toBe(before - 1);
 }
 
 const distance = (a: number[], b: number[]) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
@@ -68,9 +71,9 @@ test.describe('a spectral model of points (the shell)', () => {
     now.forEach((p: number[], k: number) => k !== h.point && expect(p).toEqual(was[k])); // alone
     // The page's handle is where the file says.
     await expect.poll(async () => distance((await handles(page)).find((x) => x.curve === 5 && x.point === h.point)!.p, now[h.point!])).toBeLessThan(THROUGH);
-    await undo(page);
+    await undo(page, studio);
     await save(page);
-    expect(fileText(studio)).toBe(original);
+    await expect.poll(() => fileText(studio)).toBe(original);
   });
 });
 
@@ -100,9 +103,9 @@ test.describe('a spectral model of Fourier curves (the membrane)', () => {
     // ... and the page's spine handles are those points.
     const after = (await handles(page)).filter((x) => x.kind === 'spine');
     after.forEach((x, k) => expect(distance(x.p, cli.points[k])).toBeLessThan(THROUGH));
-    await undo(page);
+    await undo(page, studio);
     await save(page);
-    expect(fileText(studio)).toBe(original);
+    await expect.poll(() => fileText(studio)).toBe(original);
   });
 
   test('operator: a typed a and the slider take effect, N that needs other conditions is refused', async ({ page, studio }) => {
@@ -128,11 +131,11 @@ test.describe('a spectral model of Fourier curves (the membrane)', () => {
     await page.mouse.up();
     await settle(page);
     await expect.poll(async () => (await studio.state()).model.a).not.toBe(2.5);
-    await undo(page);
+    await undo(page, studio);
     await expect.poll(async () => (await studio.state()).model.a).toBe(2.5);
-    await undo(page);
+    await undo(page, studio);
     await save(page);
-    expect(fileText(studio)).toBe(original);
+    await expect.poll(() => fileText(studio)).toBe(original);
   });
 });
 
@@ -143,6 +146,14 @@ test.describe('a cross-section chain (the vase)', () => {
     const original = fileText(studio);
     const count = JSON.parse(original).curves.length;
     await openStudio(page, studio);
+    // A point of the top section dragged: the chain passes through it.
+    const h = await dragHandle(page, (x) => x.kind === 'curve' && x.curve === count - 1, 25, -15);
+    await meshUpToDate(page);
+    await page.screenshot({ path: shot('shape-section-point.png') });
+    await save(page);
+    const top = fileJson(studio).curves[count - 1].points;
+    expect(distance(top[h.point!], h.p)).toBeGreaterThan(1e-3);
+    await undo(page, studio);
     await page.getByTestId('curve-select').selectOption('5');
     await page.getByTestId('add-section').click();
     await expect.poll(async () => (await studio.state()).model.curves.length).toBe(count + 1);
@@ -154,8 +165,8 @@ test.describe('a cross-section chain (the vase)', () => {
     await page.getByTestId('curve-select').selectOption('6');
     await page.getByTestId('remove-section').click();
     await expect.poll(async () => (await studio.state()).model.curves.length).toBe(count);
-    await undo(page);
-    await undo(page);
+    await undo(page, studio);
+    await undo(page, studio);
     await expect.poll(async () => (await studio.state()).model.curves.length).toBe(count);
     // A section scaled about its centre.
     await page.getByTestId('curve-select').selectOption('0');
@@ -169,9 +180,9 @@ test.describe('a cross-section chain (the vase)', () => {
     now.forEach((p: number[], k: number) =>
       expect(distance(p, [0, 1, 2].map((c) => centre[c] + 1.5 * (was[k][c] - centre[c])))).toBeLessThan(THROUGH),
     );
-    await undo(page);
+    await undo(page, studio);
     await save(page);
-    expect(fileText(studio)).toBe(original);
+    await expect.poll(() => fileText(studio)).toBe(original);
   });
 });
 
@@ -192,9 +203,9 @@ test.describe('a B-spline PDE net (the wave)', () => {
     const after = (await studio.state()).view.curves;
     const inner = (c: number[][][]) => c.flatMap((line) => line.slice(2, -2)).flat();
     expect(inner(after)).not.toEqual(inner(before));
-    await undo(page);
+    await undo(page, studio);
     await save(page);
-    expect(fileText(studio)).toBe(original);
+    await expect.poll(() => fileText(studio)).toBe(original);
   });
 });
 
@@ -211,8 +222,8 @@ test.describe('a B-spline PDE boundary (the dome)', () => {
     const curve = fileJson(studio).boundary.uMin;
     const points = curve.bspline ?? curve.points;
     expect(distance(points[h.point!], h.p)).toBeGreaterThan(1e-3);
-    await undo(page);
+    await undo(page, studio);
     await save(page);
-    expect(fileText(studio)).toBe(original);
+    await expect.poll(() => fileText(studio)).toBe(original);
   });
 });

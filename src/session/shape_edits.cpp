@@ -101,7 +101,8 @@ std::vector<std::vector<Vec3>*> cornerCurves(BSplinePdeModel& m) {
     return std::visit([](auto& x) { return &x.points; }, c);
   };
   if (m.form == BSplinePdeModel::Form::Boundary)
-    for (BoundaryCurve* c : {&m.boundary.uMin, &m.boundary.uMax, &m.boundary.vMin, &m.boundary.vMax})
+    for (BoundaryCurve* c :
+         {&m.boundary.uMin, &m.boundary.uMax, &m.boundary.vMin, &m.boundary.vMax})
       out.push_back(pointsOf(*c));
   if (m.form == BSplinePdeModel::Form::Blend || m.form == BSplinePdeModel::Form::ClosedBlend)
     for (BSplineCurve& c : m.curves) out.push_back(&c.points);
@@ -308,18 +309,19 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
     const std::size_t count = std::get<CrossSectionModel>(model).curves.size();
     if (name == "remove-section") {
       onlyMembers(rd, doc, {"index"});
-      out.edit = RemoveSection{rd.index(rd.member(doc, "$", "index"), "$.index", count, "section",
-                                        "sections")};
+      out.edit = RemoveSection{
+          rd.index(rd.member(doc, "$", "index"), "$.index", count, "section", "sections")};
     } else {
       onlyMembers(rd, doc, {"index", "curve"});
       AddSection e;
-      e.index = rd.integer(rd.member(doc, "$", "index"), "$.index", 0,
-                           static_cast<std::uint32_t>(count));
+      e.index =
+          rd.integer(rd.member(doc, "$", "index"), "$.index", 0, static_cast<std::uint32_t>(count));
       if (auto it = doc.find("curve"); it != doc.end())
         e.curve = parseCurve(it->dump(), "edit", "$.curve");
       else if (e.index == 0 || e.index == count)
-        rd.fail("$.curve", "a section before the first or after the last needs its \"curve\" "
-                           "(between two sections it is sampled from the surface)");
+        rd.fail("$.curve",
+                "a section before the first or after the last needs its \"curve\" "
+                "(between two sections it is sampled from the surface)");
       out.edit = std::move(e);
     }
   } else if (name == "move-control-points") {
@@ -344,7 +346,8 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
         rd.fail(path, fmt::format("P[{}][{}] is an inner point, solved by the PDE (the given "
                                   "points: rows 0, 1, {} and columns 0, 1, {})",
                                   i, j, m.net.nu, m.net.nv));
-      if (!seen.insert({i, j}).second) rd.fail(path, fmt::format("P[{}][{}] is listed twice", i, j));
+      if (!seen.insert({i, j}).second)
+        rd.fail(path, fmt::format("P[{}][{}] is listed twice", i, j));
       e.points.push_back({i, j});
     }
     e.positions = positions(rd, doc, e.points.size());
@@ -421,9 +424,9 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
           }
           m.curves.insert(m.curves.begin() + static_cast<std::ptrdiff_t>(i), std::move(curve));
           if (std::vector<double>& u = m.options.u; !u.empty()) {
-            const double at = i == 0             ? u[0] - (u[1] - u[0])
-                              : i == u.size()    ? u.back() + (u.back() - u[u.size() - 2])
-                                                 : 0.5 * (u[i - 1] + u[i]);
+            const double at = i == 0          ? u[0] - (u[1] - u[0])
+                              : i == u.size() ? u.back() + (u.back() - u[u.size() - 2])
+                                              : 0.5 * (u[i - 1] + u[i]);
             u.insert(u.begin() + static_cast<std::ptrdiff_t>(i), at);
           }
         } else if constexpr (std::is_same_v<T, RemoveSection>) {
@@ -440,7 +443,7 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
       edit);
   if (auto* m = std::get_if<BSplinePdeModel>(&next);
       m && (std::holds_alternative<MoveCurvePoints>(edit) ||
-                std::holds_alternative<TransformCurve>(edit))) {
+            std::holds_alternative<TransformCurve>(edit))) {
     BSplinePdeModel before = std::get<BSplinePdeModel>(model);
     keepCornersShared(before, *m);
   }

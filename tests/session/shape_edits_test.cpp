@@ -65,14 +65,20 @@ TEST(ShapeEdits, MovedCurvePointsAreInterpolatedAndUndoRestoresTheBytes) {
   const auto& condition = std::get<SpectralModel>(s.model()).conditions[3];
   const Vec3 was = std::get<SampledCurve>(condition.curve).points[5];
   const Vec3 to = was + Vec3(0.02, -0.01, 0.03);
-  edit(s, fmt::format(R"({{"op":"move-curve-points","curve":3,"points":[5],"positions":[[{},{},{}]],"group":"drag"}})",
-                      to.x(), to.y(), to.z()));
+  edit(
+      s,
+      fmt::format(
+          R"({{"op":"move-curve-points","curve":3,"points":[5],"positions":[[{},{},{}]],"group":"drag"}})",
+          to.x(), to.y(), to.z()));
   const SpectralPatch::ResolvedCondition& resolved = patchOf(s).conditions()[3];
   EXPECT_EQ(resolved.points[5], to);
   EXPECT_LT((patchOf(s).position(resolved.u, resolved.v[5]) - to).norm(), kThrough);
   // A second step of the same drag: still one undo step.
-  edit(s, fmt::format(R"({{"op":"move-curve-points","curve":3,"points":[5],"positions":[[{},{},{}]],"group":"drag"}})",
-                      to.x(), to.y(), to.z() + 0.01));
+  edit(
+      s,
+      fmt::format(
+          R"({{"op":"move-curve-points","curve":3,"points":[5],"positions":[[{},{},{}]],"group":"drag"}})",
+          to.x(), to.y(), to.z() + 0.01));
   EXPECT_EQ(s.undoDepth(), 1u);
   ASSERT_TRUE(s.undo());
   EXPECT_EQ(serializeModel(s.model()), original);
@@ -90,7 +96,9 @@ TEST(ShapeEdits, FourierCurvesTurnWholeAndDerivativeCurvesTakeTheLinearPartOnly)
   for (double v : {0.0, 1.0, 2.5})
     EXPECT_LT((patchOf(s).position(1.0, v) - moved.evaluate(v)).norm(), kThrough);
   // A derivative condition's curve is a vector: turned, never translated.
-  edit(s, R"({"op":"transform-curve","curve":1,"rotate":{"axis":[0,1,0],"degrees":90},"translate":[5,5,5]})");
+  edit(
+      s,
+      R"({"op":"transform-curve","curve":1,"rotate":{"axis":[0,1,0],"degrees":90},"translate":[5,5,5]})");
   const auto& d = std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[1].curve);
   EXPECT_LT((d.a0 - Vec3(2, 0, 0)).norm(), 1e-15);
   ASSERT_TRUE(s.undo());
@@ -106,7 +114,8 @@ TEST(ShapeEdits, OperatorChangesSolveOrAreRefusedWithTheReason) {
   std::string path;
   // Order 6 needs 6 conditions; the tube has 4.
   EXPECT_NE(refusal(s, R"({"op":"set-operator","N":3})", &path).find("6"), std::string::npos);
-  EXPECT_EQ(refusal(s, R"({"op":"set-operator","operator":"fu","a":1})"), refusal(s, R"({"op":"set-operator","N":3})"));
+  EXPECT_EQ(refusal(s, R"({"op":"set-operator","operator":"fu","a":1})"),
+            refusal(s, R"({"op":"set-operator","N":3})"));
   EXPECT_NE(refusal(s, R"({"op":"set-operator","a":-1})", &path), "");
   EXPECT_EQ(path, "$.a");
   EXPECT_NE(refusal(s, R"({"op":"set-operator"})", &path).find("needs"), std::string::npos);
@@ -135,16 +144,15 @@ TEST(ShapeEdits, SpineEditsAreTheFilesFieldAndMatchTheSpineCommand) {
   edit(s, Json{{"op", "set-spine"}, {"spine", spine}}.dump());
   const SpineHandles after = spineHandles(s.solved(), kHandles);
   for (std::uint32_t i = 0; i < kHandles; ++i)
-    EXPECT_LT((after.points[i] - (before.points[i] + (i == 4 ? Vec3(0.3, 0, 0) : Vec3::Zero()))).norm(),
-              kThrough)
+    EXPECT_LT(
+        (after.points[i] - (before.points[i] + (i == 4 ? Vec3(0.3, 0, 0) : Vec3::Zero()))).norm(),
+        kThrough)
         << i;
   // Saved, the file's "spine" field is the edit, and `pdesurf spine` reads the same spine.
   const Json file = Json::parse(serializeModel(s.model()));
   EXPECT_EQ(file.at("spine"), spine);
   testing::TempDir work, capture;
-  {
-    std::ofstream(work.file("edited.json")) << file.dump();
-  }
+  { std::ofstream(work.file("edited.json")) << file.dump(); }
   const testing::CliRun run =
       testing::runCli(work, capture, fmt::format("spine edited.json --count {}", kHandles));
   ASSERT_EQ(run.code, 0) << run.err;
@@ -155,9 +163,10 @@ TEST(ShapeEdits, SpineEditsAreTheFilesFieldAndMatchTheSpineCommand) {
   }
   // Refused: u not increasing (the file's own check and path), a spine on a chain.
   std::string path;
-  EXPECT_NE(refusal(s, R"({"op":"set-spine","spine":[{"u":[0.5,0.2],"moved":[[0,0,0],[0,0,1]]}]})", &path)
-                .find("increase"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(s, R"({"op":"set-spine","spine":[{"u":[0.5,0.2],"moved":[[0,0,0],[0,0,1]]}]})", &path)
+          .find("increase"),
+      std::string::npos);
   EXPECT_EQ(path, "$.spine[0].u[1]");
   ModelSession chain = open(docFile("column.json"));
   EXPECT_NE(refusal(chain, R"({"op":"set-spine","spine":[]})", &path).find("spectral models"),
@@ -168,24 +177,34 @@ TEST(ShapeEdits, SpineEditsAreTheFilesFieldAndMatchTheSpineCommand) {
 TEST(ShapeEdits, PointEditsAreRefusedOnFourierCurvesAndOutOfRange) {
   ModelSession s = open(docFile("tube.json"));
   std::string path;
-  EXPECT_NE(refusal(s, R"({"op":"move-curve-points","curve":0,"points":[0],"positions":[[0,0,0]]})", &path)
+  EXPECT_NE(refusal(s, R"({"op":"move-curve-points","curve":0,"points":[0],"positions":[[0,0,0]]})",
+                    &path)
                 .find("Fourier"),
             std::string::npos);
   EXPECT_EQ(path, "$.curve");
-  EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":9,"scale":2})", &path).find("out of range"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(s, R"({"op":"transform-curve","curve":9,"scale":2})", &path).find("out of range"),
+      std::string::npos);
   EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":0,"scale":0})", &path), "");
   EXPECT_EQ(path, "$.scale");
   EXPECT_NE(refusal(s, R"({"op":"spin"})", &path).find("unknown edit"), std::string::npos);
   ModelSession shell = open(testing::example("shell.json"));
-  EXPECT_NE(refusal(shell, R"({"op":"move-curve-points","curve":0,"points":[48],"positions":[[0,0,0]]})", &path)
-                .find("out of range"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(shell, R"({"op":"move-curve-points","curve":0,"points":[48],"positions":[[0,0,0]]})",
+              &path)
+          .find("out of range"),
+      std::string::npos);
   EXPECT_EQ(path, "$.points[0]");
-  EXPECT_NE(refusal(shell, R"({"op":"move-curve-points","curve":0,"points":[1,1],"positions":[[0,0,0],[0,0,0]]})", &path)
-                .find("twice"),
-            std::string::npos);
-  EXPECT_NE(refusal(shell, R"({"op":"move-curve-points","curve":0,"points":[1],"positions":[]})", &path), "");
+  EXPECT_NE(
+      refusal(
+          shell,
+          R"({"op":"move-curve-points","curve":0,"points":[1,1],"positions":[[0,0,0],[0,0,0]]})",
+          &path)
+          .find("twice"),
+      std::string::npos);
+  EXPECT_NE(
+      refusal(shell, R"({"op":"move-curve-points","curve":0,"points":[1],"positions":[]})", &path),
+      "");
   EXPECT_EQ(path, "$.positions");
 }
 
@@ -240,9 +259,10 @@ TEST(ShapeEdits, GivenControlPointsMoveAndTheInnerOnesAreSolvedAgain) {
   const ControlNet& old = std::get<SolvedBSplinePde>(innerBefore.solved()).pieces.at(0).net();
   EXPECT_GT((net(2, 2) - old(2, 2)).norm(), 1e-3);  // the inner points followed
   std::string path;
-  EXPECT_NE(refusal(s, R"({"op":"move-control-points","points":[[2,2]],"positions":[[0,0,0]]})", &path)
-                .find("inner point"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(s, R"({"op":"move-control-points","points":[[2,2]],"positions":[[0,0,0]]})", &path)
+          .find("inner point"),
+      std::string::npos);
   EXPECT_EQ(path, "$.points[0]");
   ASSERT_TRUE(s.undo());
   EXPECT_EQ(serializeModel(s.model()), original);
@@ -259,9 +279,12 @@ TEST(ShapeEdits, BoundaryAndBlendCurvesMove) {
     edit(s, fmt::format(R"({{"op":"transform-curve","curve":"{}","translate":[0,0,0.1]}})", name));
     EXPECT_NE(serializeModel(s.model()), original);
     std::string path;
-    EXPECT_NE(refusal(s, R"({"op":"move-curve-points","curve":"middle","points":[0],"positions":[[0,0,0]]})", &path)
-                  .find("no curve"),
-              std::string::npos);
+    EXPECT_NE(
+        refusal(s,
+                R"({"op":"move-curve-points","curve":"middle","points":[0],"positions":[[0,0,0]]})",
+                &path)
+            .find("no curve"),
+        std::string::npos);
     EXPECT_EQ(path, "$.curve");
     ASSERT_TRUE(s.undo());
     EXPECT_EQ(serializeModel(s.model()), original);

@@ -16,7 +16,7 @@ const CLICK_PIXELS = 5;
 /** A handle is under the pointer within this many pixels of its centre. */
 const PICK_PIXELS = 10;
 /** Handle diameters in CSS pixels: curve points, control points, spine points. */
-const HANDLE_PIXELS = 8;
+const HANDLE_PIXELS = 7;
 const COLOURS = { curve: 0x3d5a80, control: 0x2e7d32, spine: 0xee6c4d, picked: 0xffb300 };
 
 type Json = Record<string, any>; // eslint-disable-line @typescript-eslint/no-explicit-any
@@ -97,12 +97,15 @@ export function mountCurveEditor(studio: Studio): void {
     return `spine point ${h.index} (u = ${store.state.view?.spineHandles?.u[h.index]})`;
   }
 
-  function pick(h: Handle | null): void {
+  /** Marks handle `h` (null: none); `choose`: its curve becomes the panel's (a click on it). */
+  function pick(h: Handle | null, choose = false): void {
     picked = h;
     $('shape-handle').textContent = describe(h);
-    if (h?.kind === 'curve') $<HTMLSelectElement>('curve-select').value = String(h.curve);
+    if (choose && h?.kind === 'curve') $<HTMLSelectElement>('curve-select').value = String(h.curve);
     draw();
   }
+  // A curve chosen in the list: the handle picked before is no longer the subject.
+  $('curve-select').addEventListener('change', () => pick(null));
 
   // ------------------------------------------------------------------ dragging handles
   canvas.addEventListener('pointerdown', (ev) => {
@@ -113,7 +116,7 @@ export function mountCurveEditor(studio: Studio): void {
     const handle = handles[index];
     drag = { handle, index, pointer: ev.pointerId, spine: structuredClone(shape()!.spine ?? []), moved: false, x: ev.clientX, y: ev.clientY };
     canvas.setPointerCapture(ev.pointerId);
-    pick(handle);
+    pick(handle, true);
     ev.preventDefault();
     ev.stopImmediatePropagation();
   });
@@ -244,6 +247,7 @@ export function mountCurveEditor(studio: Studio): void {
       }),
     );
     if ([...select.options].some((o) => o.value === was)) select.value = was;
+    $('curve-tools').hidden = select.options.length === 0; // a net has points, no curves
     $('section-tools').hidden = model.type !== 'cross-sections';
     const spectral = model.type === 'spectral';
     $('operator-tools').hidden = !spectral && model.type !== 'cross-sections';
