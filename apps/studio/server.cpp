@@ -326,13 +326,13 @@ class StudioServer::Impl {
             {"dirty", revision() != savedRevision_}};
   }
 
-  /// Edits other than whole-model transforms need a model with editable parts (vertex
-  /// frames); the other types are shown, moved, turned, scaled, exported and saved, but their
-  /// curves and nets are not edited (yet).
+  /// The routes of vertex frames (their edits, boundaries, patch ids, curvature) need a
+  /// vertex-frame model; the other types take shape edits (session.hpp: ShapeEdit) and
+  /// whole-model transforms.
   void requireEditable() const {
     if (!session_->editable())
-      fail(409, fmt::format("{} models are view-only in the studio: edit the file, then open it "
-                            "again (whole-model transforms work: POST /api/transform)",
+      fail(409, fmt::format("{} models have no vertex frames: this is for vertex-frame models "
+                            "(their curves take shape edits, the whole model POST /api/transform)",
                             modelTypeName(session_->model())));
   }
 

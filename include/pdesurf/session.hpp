@@ -256,7 +256,8 @@ class UndoHistory {
 };
 
 /// An editing session on a model of any type: validated edits of its editable parts (vertex
-/// frames: vertices, a1/a2, forces, the frame structure), whole-model transforms of every type,
+/// frames: vertices, a1/a2, forces, the frame structure; the other types: their curves, nets,
+/// spines and operators through shape edits), whole-model transforms of every type,
 /// undo and redo (a drag is one step), and the solved model cached per revision. Models without
 /// editable parts are solved whenever they change and kept with their solution, so undo and redo do
 /// not solve again; a vertex-frame model is solved on first use after each change, on a topology
@@ -280,8 +281,8 @@ class ModelSession {
   explicit ModelSession(AnyModel model, std::string source = "model");
 
   const AnyModel& model() const { return *current_.model; }
-  /// The editable vertex-frame model, or nullptr when the model has no editable parts
-  /// (it is then only transformed whole).
+  /// The editable vertex-frame model, or nullptr for the other types (they take shape edits
+  /// and whole-model transforms).
   const VertexFrameModel* frames() const { return std::get_if<VertexFrameModel>(&model()); }
   bool editable() const { return frames() != nullptr; }
   /// Increases with every change of the model (edit, transform, undo, redo).

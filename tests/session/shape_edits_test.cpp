@@ -291,5 +291,34 @@ TEST(ShapeEdits, BoundaryAndBlendCurvesMove) {
   }
 }
 
+TEST(ShapeEdits, ABlendsCornerMovesInEveryCurveThatSharesIt) {
+  ModelSession s = open(testing::example("bspline-blend.json"));
+  const auto curves = [&] { return std::get<BSplinePdeModel>(s.model()).curves; };
+  const Vec3 corner = curves()[0].points.front();
+  const Vec3 to = corner + Vec3(0, 0, 0.1);
+  std::size_t sharing = 0;  // curve ends at that corner
+  for (const BSplineCurve& c : curves())
+    sharing += (c.points.front() == corner) + (c.points.back() == corner);
+  ASSERT_EQ(sharing, 2u);  // uMin's start and the curve that meets it there
+  edit(s,
+       fmt::format(
+           R"({{"op":"move-curve-points","curve":"uMin","points":[0],"positions":[[{},{},{}]]}})",
+           to.x(), to.y(), to.z()));
+  std::size_t moved = 0;
+  for (const BSplineCurve& c : curves()) {
+    EXPECT_NE(c.points.front(), corner);
+    EXPECT_NE(c.points.back(), corner);
+    moved += (c.points.front() == to) + (c.points.back() == to);
+  }
+  EXPECT_EQ(moved, 2u);
+  // The solved blend passes through the moved corner.
+  const SolvedBSplinePde& solved = std::get<SolvedBSplinePde>(s.solved().solved());
+  double nearest = 1e300;
+  for (const BSplineSurface& piece : solved.pieces)
+    for (double u : {0.0, 1.0})
+      for (double v : {0.0, 1.0}) nearest = std::min(nearest, (piece.position(u, v) - to).norm());
+  EXPECT_LT(nearest, kThrough);
+}
+
 }  // namespace
 }  // namespace pdesurf
