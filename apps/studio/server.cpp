@@ -64,6 +64,8 @@ constexpr std::uint32_t kDefaultMeshResolution = 16, kDefaultExportResolution = 
 /// Resolutions whose last mesh the server keeps as a delta base: a gesture's preview and the
 /// chosen resolution (web/src/preview.ts).
 constexpr std::size_t kMeshSlots = 2;
+/// The spine points a spectral model shows to drag (GET /api/model's view.spineHandles).
+constexpr std::uint32_t kSpineHandles = 9;
 
 /// The per-launch token's size: 192 bits, as Jupyter's (the issue asks for at least 128).
 constexpr std::size_t kTokenBytes = 24;
@@ -324,13 +326,13 @@ class StudioServer::Impl {
             {"dirty", revision() != savedRevision_}};
   }
 
-  /// Edits other than whole-model transforms need a model with editable parts (vertex
-  /// frames); the other types are shown, moved, turned, scaled, exported and saved, but their
-  /// curves and nets are not edited (yet).
+  /// The routes of vertex frames (their edits, boundaries, patch ids, curvature) need a
+  /// vertex-frame model; the other types take shape edits (session.hpp: ShapeEdit) and
+  /// whole-model transforms.
   void requireEditable() const {
     if (!session_->editable())
-      fail(409, fmt::format("{} models are view-only in the studio: edit the file, then open it "
-                            "again (whole-model transforms work: POST /api/transform)",
+      fail(409, fmt::format("{} models have no vertex frames: this is for vertex-frame models "
+                            "(their curves take shape edits, the whole model POST /api/transform)",
                             modelTypeName(session_->model())));
   }
 
@@ -355,6 +357,8 @@ class StudioServer::Impl {
     path_ = path;
     fileText_ = fileText;
     fileModel_ = text;
+    openedText_ = fileText;
+    openedModel_ = text;
     savedRevision_ = revision();
     // An autosave that differs from the file holds edits a crash left unsaved.
     recovery_ = false;
@@ -393,7 +397,10 @@ class StudioServer::Impl {
   /// serializeModel.
   std::string modelText() const {
     std::string text = serializeModel(session_->model());
-    return session_->editable() || text != fileModel_ ? text : fileText_;
+    if (session_->editable()) return text;
+    if (text == fileModel_) return fileText_;
+    // Shape edits undone after a save: the model as opened is written as its file was.
+    return text == openedModel_ ? openedText_ : text;
   }
 
   /// What the frame view draws for a view-only model (overlay()): polylines as JSON.
@@ -408,7 +415,12 @@ class StudioServer::Impl {
       }
       return out;
     };
-    return {{"curves", lines(view.curves)}, {"spines", lines(view.spines)}};
+    Json out = {{"curves", lines(view.curves)}, {"spines", lines(view.spines)}};
+    // A spectral model's spine points to drag (as `pdesurf spine --count` places them).
+    const SpineHandles spine = spineHandles(session_->solved(), kSpineHandles);
+    if (!spine.u.empty())
+      out["spineHandles"] = {{"u", spine.u}, {"points", lines({spine.points})[0]}};
+    return out;
   }
 
   /// The page's meshes at one resolution: the tessellator that makes them (a drag keeps its
@@ -696,8 +708,13 @@ class StudioServer::Impl {
 
     server_.Post(
         "/api/edit", guarded([this](const httplib::Request& req, httplib::Response& res) {
-          requireEditable();
-          const GroupedEdit edit = parseEdit(req.body, *session_->frames());
+          // Spectral, cross-section and B-spline PDE models take shape edits (session.hpp).
+          std::optional<GroupedShapeEdit> shape;
+          if (!session_->editable() && takesShapeEdits(session_->model()))
+            shape = parseShapeEdit(req.body, session_->model());
+          else
+            requireEditable();
+          const GroupedEdit edit = shape ? GroupedEdit{} : parseEdit(req.body, *session_->frames());
           // `?mesh=1` (and the mesh's parameters): the mesh after the edit, with the
           // status in X-Status: one round trip for a drag step instead of two.
           std::optional<MeshRequest> mesh;
@@ -706,7 +723,10 @@ class StudioServer::Impl {
               fail(400, fmt::format("mesh: expected 1, found \"{}\"", req.get_param_value("mesh")));
             mesh = meshRequest(req);
           }
-          session_->apply(edit.edit, edit.group);
+          if (shape)
+            session_->apply(shape->edit, shape->group);
+          else
+            session_->apply(edit.edit, edit.group);
           autosave();
           if (mesh) {
             sendMesh(*mesh, res);
@@ -725,7 +745,7 @@ class StudioServer::Impl {
                  }));
 
     server_.Post("/api/end-group", guarded([this](const httplib::Request&, httplib::Response& res) {
-                   requireEditable();
+                   if (!takesShapeEdits(session_->model())) requireEditable();
                    session_->endGroup();
                    sendJson(res, status());
                  }));
@@ -959,8 +979,10 @@ class StudioServer::Impl {
   // across resolutions and opened models too.
   std::array<MeshSlot, kMeshSlots> meshSlots_;
   std::uint64_t meshClock_ = 0;
-  std::string fileText_;   ///< the model's file as read or saved last
-  std::string fileModel_;  ///< serializeModel of that file's model
+  std::string fileText_;     ///< the model's file as read or saved last
+  std::string fileModel_;    ///< serializeModel of that file's model
+  std::string openedText_;   ///< the model's file as opened
+  std::string openedModel_;  ///< serializeModel of the model as opened
   bool opened_ = false;
   Journal journal_;
   std::uint64_t meshCounter_ = 0;

@@ -245,19 +245,19 @@ test('recovery: an autosave that differs from the file is offered', async ({ pag
 
 test.describe('a spectral model', () => {
   test.use({ example: 'shell.json' });
-  test('is shown, exported and refused as an edit', async ({ page, studio }) => {
+  test('is shown, exported and refuses a vertex edit', async ({ page, studio }) => {
     await openStudio(page, studio);
-    await expect(page.getByTestId('status')).toContainText('spectral model: view only');
+    await expect(page.getByTestId('status')).toContainText('spectral model: drag its handles');
     await expect(page.getByTestId('status')).toContainText('triangles');
     expect((await studio.state()).editable).toBe(false);
-    await expect(page.getByTestId('frame-caption')).toHaveText('Curves and spine (view only)');
+    await expect(page.getByTestId('frame-caption')).toHaveText('Curves and spine');
     await expect(page.getByTestId('frame-tools')).toBeHidden();
     await page.waitForTimeout(300);
     await page.screenshot({ path: shot('shell.png') });
     const error = await page.evaluate(() =>
       (window as any).__studio.edit({ op: 'move-vertex', vertex: 0, position: [0, 0, 0] }),
     );
-    expect(error).toContain('view-only');
+    expect(error).toContain('vertex-frame models');
     await page.getByTestId('export-obj').click();
     await expect(page.getByTestId('status')).toContainText('exported shell.obj');
     expect(existsSync(path.join(studio.root, 'shell.obj'))).toBe(true);
@@ -345,8 +345,8 @@ test.describe('a B-spline PDE model', () => {
   test.use({ example: 'bspline-blend.json' });
   test('shows its control nets and surface, and scales as a whole', async ({ page, studio }) => {
     await openStudio(page, studio);
-    await expect(page.getByTestId('status')).toContainText('bspline-pde model: view only');
-    await expect(page.getByTestId('frame-caption')).toHaveText('Control nets (view only)');
+    await expect(page.getByTestId('status')).toContainText('bspline-pde model: drag its handles');
+    await expect(page.getByTestId('frame-caption')).toHaveText('Control nets');
     await expect(page.getByTestId('frame-tools')).toBeHidden();  // no vertices, frames, forces
     await meshUpToDate(page);
     expect(await page.evaluate(() => (window as any).__studio.meshMatchesServer())).toBe(true);

@@ -34,6 +34,23 @@ namespace pdesurf {
 /// Throws ModelError with source "edit" and the JSON path of the problem.
 GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model);
 
+/// Parses and validates a shape edit of a spectral, cross-section or B-spline PDE model
+/// (session.hpp: ShapeEdit), with an optional "group" as parseEdit's:
+///   {"op": "move-curve-points", "curve": 2, "points": [0, 5], "positions": [[x, y, z], ...]}
+///   {"op": "transform-curve", "curve": 1, "translate": [...], "rotate": {...}, "scale": s,
+///    "center": [...]}  (the fields of parseTransform)
+///   {"op": "set-operator", "operator": "ugail" | "fu", "N": 3, "a": 2, "modes": 6,
+///    "remainder": true}  (any of them; chains: a, modes, remainder)
+///   {"op": "set-spine", "spine": [{"u": [...], "moved": [[x, y, z], ...]}]}  (the file's field)
+///   {"op": "add-section", "index": 2, "curve": {...}}  (curve optional between two sections)
+///   {"op": "remove-section", "index": 2}
+///   {"op": "move-control-points", "points": [[i, j], ...], "positions": [...]}  (net form)
+/// "curve" is a condition's index (spectral), a section's (cross-sections) or a curve's name
+/// (bspline-pde: "uMin", "uMax", "vMin", "vMax", "uMinSecond", "vMinSecond", "start", "end").
+/// Throws ModelError with source "edit" and the JSON path of the problem; what the edit makes
+/// is checked when the session applies it (applyShapeEdit).
+GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model);
+
 /// Parses what a new model is (POST /api/new): {"kind": "single" | "grid" | "tube", "u": 3,
 /// "v": 2, "size": 1, "name": "..."}, all but kind optional (NewModelOptions' defaults); other
 /// fields are left to the caller. Throws ModelError with source "new model" and the JSON path.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pdesurf/model.hpp"
+#include "pdesurf/spectral.hpp"
 #include "pdesurf/transform.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
@@ -136,6 +137,90 @@ struct GroupedEdit {
   std::string group;
 };
 
+// Edits of spectral, cross-section and B-spline PDE models (src/session/shape_edits.cpp,
+// parsed by parseShapeEdit in edit_io.hpp). Each names what it changes as the model file
+// does; the session checks the result as the file parser would and solves it, refusing the
+// edit (a ModelError with the reason, the session unchanged) when either fails.
+
+/// A curve of a model: a spectral model's condition (`index`), a cross-section (`index`),
+/// or a B-spline PDE model's curve by its file name (`name`: "uMin", "uMax", "vMin", "vMax",
+/// "uMinSecond", "vMinSecond" of the boundary form; "uMin".."vMax" of the blend, "start",
+/// "end" of the closed blend).
+struct CurveRef {
+  std::uint32_t index = 0;
+  std::string name;  ///< B-spline PDE models only
+};
+/// Moves points of a curve given as points (a B-spline curve's control points, a boundary
+/// curve's samples, a second row's points) to absolute positions: one drag step.
+struct MoveCurvePoints {
+  CurveRef curve;
+  std::vector<std::uint32_t> points;
+  std::vector<Vec3> positions;  ///< one per point
+};
+/// Moves, turns or scales one whole curve (points or Fourier coefficients: a0 takes the
+/// whole map, the modes and a derivative condition's curve the linear part alone).
+struct TransformCurve {
+  CurveRef curve;
+  AffineMap map;
+};
+/// Changes a spectral model's operator and options, or a chain's a and modes.
+struct SetOperator {
+  std::optional<OperatorKind> kind;    ///< spectral only
+  std::optional<std::uint32_t> power;  ///< Ugail's N (spectral only)
+  std::optional<double> a;             ///< spectral and cross-sections
+  std::optional<std::uint32_t> modes;  ///< spectral and cross-sections
+  std::optional<bool> remainder;       ///< spectral and cross-sections
+};
+/// Replaces a spectral model's spine edits (its file's "spine" field): the studio's spine
+/// drag sends the list with the dragged point's edit (seed 003 §4.2).
+struct SetSpine {
+  std::vector<SpineEdit> edits;
+};
+/// Inserts a section into a cross-section chain before section `index` (index = count: at
+/// the end). Without a curve the section is the chain's surface sampled half way between
+/// its neighbours (so the shape barely changes; only between two sections); a chain with
+/// explicit "u" gets the mid value too.
+struct AddSection {
+  std::uint32_t index = 0;
+  std::optional<CurveInput> curve;
+};
+/// Removes section `index` of a cross-section chain (and its "u").
+struct RemoveSection {
+  std::uint32_t index = 0;
+};
+/// Moves given control points of a B-spline PDE model's net (rows 0, 1, n_u and columns 0,
+/// 1, n_v); the inner points are solved again.
+struct MoveControlPoints {
+  std::vector<std::array<std::uint32_t, 2>> points;  ///< (i, j): row i along u, column j
+  std::vector<Vec3> positions;
+};
+
+using ShapeEdit = std::variant<MoveCurvePoints, TransformCurve, SetOperator, SetSpine, AddSection,
+                               RemoveSection, MoveControlPoints>;
+/// A shape edit as the studio sends it, with its undo group (as GroupedEdit).
+struct GroupedShapeEdit {
+  ShapeEdit edit;
+  std::string group;
+};
+/// Whether a model takes shape edits (spectral, cross-sections, bspline-pde).
+bool takesShapeEdits(const AnyModel& model);
+/// The model after a shape edit (parsed against it by parseShapeEdit), checked as its file
+/// would be (parseModel of its text). `solved` is `model` solved (AddSection samples it).
+/// Throws ModelError (source "edit") naming what is wrong.
+AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const ShapeEdit& edit);
+
+/// Points a section sampled from a chain's surface (AddSection) has at least.
+constexpr std::size_t kMinSampledSection = 16;
+
+/// The spine points the studio lets a user drag on a spectral model: `count` points of A0 at
+/// uniform u over the patch, exactly as `pdesurf spine --count` places them; empty for the
+/// other types.
+struct SpineHandles {
+  std::vector<double> u;
+  std::vector<Vec3> points;
+};
+SpineHandles spineHandles(const SolvedModel& solved, std::uint32_t count);
+
 /// Snapshots of a value for undo and redo. Consecutive changes of one non-empty group
 /// undo as one step.
 template <typename Model>
@@ -177,7 +262,8 @@ class UndoHistory {
 };
 
 /// An editing session on a model of any type: validated edits of its editable parts (vertex
-/// frames: vertices, a1/a2, forces, the frame structure), whole-model transforms of every type,
+/// frames: vertices, a1/a2, forces, the frame structure; the other types: their curves, nets,
+/// spines and operators through shape edits), whole-model transforms of every type,
 /// undo and redo (a drag is one step), and the solved model cached per revision. Models without
 /// editable parts are solved whenever they change and kept with their solution, so undo and redo do
 /// not solve again; a vertex-frame model is solved on first use after each change, on a topology
@@ -201,8 +287,8 @@ class ModelSession {
   explicit ModelSession(AnyModel model, std::string source = "model");
 
   const AnyModel& model() const { return *current_.model; }
-  /// The editable vertex-frame model, or nullptr when the model has no editable parts
-  /// (it is then only transformed whole).
+  /// The editable vertex-frame model, or nullptr for the other types (they take shape edits
+  /// and whole-model transforms).
   const VertexFrameModel* frames() const { return std::get_if<VertexFrameModel>(&model()); }
   bool editable() const { return frames() != nullptr; }
   /// Increases with every change of the model (edit, transform, undo, redo).
@@ -215,6 +301,10 @@ class ModelSession {
   /// Moves, turns or scales the model (one undo step). An invalid result (checkTransform)
   /// or a solver refusal throws ModelError and leaves the session as it was.
   void transform(const AffineMap& map);
+  /// Applies a shape edit (spectral, cross-section, B-spline PDE models: takesShapeEdits):
+  /// the result checked and solved first (ModelError: the session as it was), grouped as
+  /// apply's edits are.
+  void apply(const ShapeEdit& edit, std::string_view group = {});
   bool undo();
   bool redo();
   std::size_t undoDepth() const { return history_.undoDepth(); }

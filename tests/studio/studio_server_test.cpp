@@ -763,7 +763,7 @@ TEST_F(StudioServerTest, AutosaveRecoversAfterACrash) {
   EXPECT_EQ(model()["recovery"], false);
 }
 
-TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedButNotEdited) {
+TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedAndRefuseVertexEdits) {
   const std::string tube = R"({"type": "spectral", "name": "tube", "operator": "ugail", "N": 1,
     "modes": 2, "conditions": [
       {"u": 0, "curve": {"fourier": {"a0": [0, 0, 0], "a": [[1, 0, 0]], "b": [[0, 1, 0]]}}},
@@ -784,11 +784,13 @@ TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedButNotEdited) {
   EXPECT_EQ(mesh.vertexCount, 5u * 16u);  // 5 rows, 4(5 − 1) columns, the seam shared
   EXPECT_EQ(mesh.revision, m["revision"].get<std::uint32_t>());
 
-  for (const char* route : {"/api/edit", "/api/end-group"}) {
-    const auto [status, message] = failure(post(route, move(0, 0, 0, 0)));
-    EXPECT_EQ(status, 409) << route;
-    EXPECT_NE(message.find("spectral models are view-only"), std::string::npos) << message;
-  }
+  // A vertex edit is refused, naming the edits this type takes (tests/session/
+  // shape_edits_test.cpp tests them); ending a group is harmless.
+  const auto [status, message] = failure(post("/api/edit", move(0, 0, 0, 0)));
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("edits vertex-frame models; a spectral model takes"), std::string::npos)
+      << message;
+  EXPECT_EQ(post("/api/end-group")->status, 200);
   EXPECT_EQ(failure(post("/api/undo")), std::pair(409, std::string("nothing to undo")));
   EXPECT_EQ(failure(post("/api/redo")), std::pair(409, std::string("nothing to redo")));
   const auto exported = post("/api/export", R"({"path": "tube.obj", "resolution": 5})");
@@ -908,8 +910,8 @@ TEST_F(StudioServerTest, SpectralModelsAreTransformedUndoneSavedAndJournaled) {
   EXPECT_NEAR(box[2], 2, 1e-6);
   EXPECT_NEAR(box[5], 5, 1e-6);
 
-  // Other edits stay refused; undo and redo work.
-  EXPECT_EQ(failure(post("/api/edit", move(0, 0, 0, 0))).first, 409);
+  // Vertex edits stay refused; undo and redo work.
+  EXPECT_EQ(failure(post("/api/edit", move(0, 0, 0, 0))).first, 400);
   ASSERT_EQ(post("/api/undo")->status, 200);
   EXPECT_EQ(model()["model"], opened["model"]);
   ASSERT_EQ(post("/api/redo")->status, 200);
@@ -936,6 +938,33 @@ TEST_F(StudioServerTest, SpectralModelsAreTransformedUndoneSavedAndJournaled) {
   EXPECT_EQ(model()["dirty"], false);
 }
 
+TEST_F(StudioServerTest, ShapeEditsAreCheckedUndoneAndSavedByteForByte) {
+  // A spectral model's curves through POST /api/edit (session.hpp: ShapeEdit): applied with
+  // the mesh, refused with the reason (nothing changed), undone to the file as opened.
+  const fs::path source = fs::path(PDESURF_SOURCE_DIR) / "docs" / "model-format" / "tube.json";
+  fs::copy_file(source, root_ / "tube.json");
+  const std::string original = readText(root_ / "tube.json");
+  ASSERT_EQ(post("/api/open", R"({"path": "tube.json"})")->status, 200);
+  const Json opened = model();
+  ASSERT_EQ(opened["view"]["spineHandles"]["u"].size(), 9u);  // as `pdesurf spine --count 9`
+  const auto moved = post("/api/edit?mesh=1&resolution=5",
+                          R"({"op": "transform-curve", "curve": 2, "translate": [0, 0, 1]})");
+  ASSERT_EQ(moved->status, 200) << moved->body;
+  EXPECT_TRUE(moved->has_header("X-Status"));
+  EXPECT_EQ(model()["model"]["conditions"][2]["curve"]["fourier"]["a0"], Json({0, 0, 2}));
+  const auto revision = model()["revision"];
+  const auto [status, message] = failure(post("/api/edit", R"({"op": "set-operator", "N": 3})"));
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("$.conditions"), std::string::npos) << message;
+  EXPECT_EQ(model()["revision"], revision);
+  ASSERT_EQ(post("/api/save")->status, 200);
+  EXPECT_EQ(Json::parse(readText(root_ / "tube.json"))["conditions"][2]["curve"]["fourier"]["a0"],
+            Json({0, 0, 2}));
+  ASSERT_EQ(post("/api/undo")->status, 200);
+  ASSERT_EQ(post("/api/save")->status, 200);
+  EXPECT_EQ(readText(root_ / "tube.json"), original);
+}
+
 TEST_F(StudioServerTest, BSplineModelsAreShownTransformedAndSaved) {
   // Example 5 (a closed blend): the studio shows its control nets and its surface, moves it,
   // and saves a file that reads back as the moved model.
@@ -949,7 +978,7 @@ TEST_F(StudioServerTest, BSplineModelsAreShownTransformedAndSaved) {
   EXPECT_EQ(m["view"]["curves"].size(), 2u * 14u);
   const MeshData before = mesh("?resolution=9");
   ASSERT_GT(before.positions.size(), 0u);
-  EXPECT_EQ(failure(post("/api/edit", move(0, 0, 0, 0))).first, 409);
+  EXPECT_EQ(failure(post("/api/edit", move(0, 0, 0, 0))).first, 400);
 
   ASSERT_EQ(post("/api/transform", R"({"translate": [1, 0, 0]})")->status, 200);
   const MeshData after = mesh("?resolution=9");

@@ -45,6 +45,8 @@ export interface ModelView {
   curves: Vec3[][];
   /** The spine A0(u) of each patch. */
   spines: Vec3[][];
+  /** A spectral model's spine points to drag, at their u (as `pdesurf spine --count 9`). */
+  spineHandles?: { u: number[]; points: Vec3[] };
 }
 
 export interface ModelState extends Status {
@@ -84,7 +86,9 @@ export type Edit =
   | { op: 'split-frame'; frame: number; parts: 4 }
   | { op: 'split-frame'; frame: number; parts: 2; across: 'u' | 'v' }
   | { op: 'weld-vertices'; vertices: [number, number] }
-  | { op: 'weld-edges'; edges: { frame: number; side: number }[] };
+  | { op: 'weld-edges'; edges: { frame: number; side: number }[] }
+  // The shape edits of the other model types (shape.ts: ShapeEdit).
+  | import('./shape').ShapeEdit;
 
 /** A new model (POST /api/new): one frame, a u × v grid, or a tube of u frames round z. */
 export interface NewModel {

@@ -5,6 +5,7 @@
 // redo, open and any refused edit.
 import './style.css';
 import { mountAnalysis } from './analysis';import { mountDragTool } from './drag';
+import { mountCurveEditor } from './curve-editor';
 import { mountKeys } from './keys';
 import { mountModeller } from './modeller';
 import { mountPanel } from './panel';
@@ -20,6 +21,7 @@ const studio = new Studio();
 mountStatusBar(studio);
 mountSceneSync(studio);
 mountDragTool(studio); // before the orbit controls: a press on a handle must not orbit
+mountCurveEditor(studio); // the same for the handles of spectral and B-spline models
 studio.frameView.attachControls();
 studio.surfaceView.attachControls();
 mountPanel(studio);

@@ -29,8 +29,8 @@ export function mountSceneSync(studio: Studio): void {
     $('frame-caption').textContent = !state.viewOnly
       ? 'Vertex frames'
       : state.viewOnly === 'bspline-pde'
-        ? 'Control nets (view only)'
-        : 'Curves and spine (view only)';
+        ? 'Control nets'
+        : 'Curves and spine';
     surfaceView.setOverlay(overlayWanted(studio));
   });
   // A moved vertex (a drag): only its handle and line ends change.

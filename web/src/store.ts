@@ -12,6 +12,9 @@ export interface State {
   viewOnly: string;
   /** A view-only model's curves and spines. */
   view: ModelView | null;
+  /** A spectral, cross-section or B-spline PDE model as its file says (curve-editor.ts edits
+   * its curves, nets and spine through the server's shape edits). */
+  shape: unknown;
   status: Status | null;
   /** An autosave differs from the file (offer to recover it). */
   recovery: boolean;
@@ -48,6 +51,7 @@ export function initialState(): State {
     model: null,
     viewOnly: '',
     view: null,
+    shape: null,
     status: null,
     recovery: false,
     selectedVertex: null,

@@ -172,6 +172,7 @@ export class Studio {
       s.model = editable ? m.model : null;
       s.viewOnly = editable ? '' : ((m.model as { type?: string }).type ?? 'this');
       s.view = editable ? null : (m.view ?? { curves: [], spines: [] });
+      s.shape = editable ? null : m.model;
       s.path = m.path;
       s.status = m;
       s.recovery = m.recovery;
