@@ -91,7 +91,8 @@ struct FitOptions {
   /// How much a pair's distance along the tangent plane counts against its distance along
   /// the normal, at the first iteration (1: the plain distance, point to point; small:
   /// nearly point to plane, Gauss–Newton on the true distances, much faster near the
-  /// answer). It then adapts: a tenth after a full step, ten times after a shortened one.
+  /// answer). It then adapts: a tenth after two full steps in a row, ten times after a
+  /// shortened step or a step that failed whole and halved (src/fit/fit.cpp).
   /// Pairs whose foot is on a boundary count the plain distance.
   double tangentialWeight = 0.1;
   /// Halvings of a step the line search tries before it gives up.
