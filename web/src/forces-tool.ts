@@ -130,6 +130,7 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
   async function redraw(): Promise<void> {
     const mine = ++ticket;
     const { list, selected } = outlines();
+    if (!list.length && !selected && !drawn.length && !handlePoints.length) return; // nothing shown, nothing to show
     const byFrame = new Map<number, UV[]>();
     const uvOf = (f: number) => byFrame.get(f) ?? (byFrame.set(f, []), byFrame.get(f)!);
     const spans = list.map((o) => {

@@ -50,10 +50,13 @@ export function mountGizmo(studio: Studio): Gizmo {
   const place = () => {
     const model = store.state.model;
     const vertices = model ? selectionVertices(studio) : [];
+    const wasVisible = helper.visible;
     helper.visible = on && vertices.length > 0;
     controls.enabled = helper.visible;
     if (vertices.length && !drag) proxy.position.set(...boxCentre(vertices.map((v) => model!.vertices[v])));
-    frameView.invalidate();
+    // Only a shown gizmo (or one shown or hidden now) needs the frame view drawn whole: a
+    // hidden one must not turn a vertex drag's region redraw (scene.ts) into whole draws.
+    if (helper.visible || wasVisible) frameView.invalidate();
   };
   store.subscribe(['model', 'selection', 'vertex'], place);
   const toggle = () => {

@@ -237,11 +237,14 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
   dots.renderOrder = 5;
   dots.frustumCulled = false;
   surfaceView.scene.add(dots);
-  store.subscribe(['model', 'selection', 'vertex'], (state) => {
+  store.subscribe(['model', 'selection', 'vertex'], (state, topics) => {
     const model = state.model;
     const picked = model ? state.selectedVertices.filter((v) => v < model.vertices.length) : [];
     dots.geometry.setAttribute('position', new THREE.Float32BufferAttribute(picked.flatMap((v) => model!.vertices[v]), 3));
-    surfaceView.invalidate();
+    // A drag's moved vertex alone ('vertex') waits for the surface of that edit, which draws
+    // the view anyway: a draw now would hold the page while the edit's answer comes in, and
+    // would show the dot ahead of its surface.
+    if (topics.has('model') || topics.has('selection')) surfaceView.invalidate();
   });
 
   const gizmo = mountGizmo(studio);
