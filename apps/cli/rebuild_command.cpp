@@ -32,6 +32,17 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+/// `compute()`, with the std::invalid_argument a mesh it cannot use throws turned into
+/// MeshIoError "MESH: WHAT<reason>" (exit 1, naming the file).
+template <class Compute>
+auto namingMesh(const std::string& meshPath, std::string_view what, Compute&& compute) {
+  try {
+    return compute();
+  } catch (const std::invalid_argument& e) {
+    throw MeshIoError(fmt::format("{}: {}{}", meshPath, what, e.what()));
+  }
+}
+
 /// A well-formed argument that cannot be used (exit 2).
 struct RebuildUsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -236,12 +247,8 @@ int RebuildCommand::runCrossSections() const {
   const Mesh surface = tessellate(rebuilt.chain, measureOptions(rebuilt.chain.patches.size()));
   DistanceOptions distanceOptions;
   distanceOptions.samples = samples;
-  MeshDistance d;
-  try {
-    d = meshDistance(surface, part, distanceOptions);
-  } catch (const std::invalid_argument& e) {
-    throw MeshIoError(fmt::format("{}: the rebuilt part: {}", meshPath, e.what()));
-  }
+  const MeshDistance d = namingMesh(
+      meshPath, "the rebuilt part: ", [&] { return meshDistance(surface, part, distanceOptions); });
   const double measureMs = msSince(t0);
   // The peer: Open CASCADE's loft through the same sections, measured the same way.
   std::optional<MeshDistance> loftDistance;
@@ -357,12 +364,8 @@ int RebuildCommand::runVertexFrames() const {
         m.samples);
   };
   t0 = Clock::now();
-  FitResult fitted;
-  try {
-    fitted = fitVertexFrames(layout, mesh, options);
-  } catch (const std::invalid_argument& e) {
-    throw MeshIoError(fmt::format("{}: {}", meshPath, e.what()));
-  }
+  const FitResult fitted =
+      namingMesh(meshPath, "", [&] { return fitVertexFrames(layout, mesh, options); });
   const double fitMs = msSince(t0);
 
   writeFileAtomically(outPath, serializeVertexFrameModel(fitted.model));

@@ -4,7 +4,6 @@
 
 #include <fcntl.h>
 #include <pthread.h>
-#include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -35,6 +34,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "access_guard.hpp"
 #include "http_error.hpp"
 #include "journal.hpp"
 #include "mesh_wire.hpp"
@@ -66,55 +66,6 @@ constexpr std::uint32_t kDefaultMeshResolution = 16, kDefaultExportResolution = 
 constexpr std::size_t kMeshSlots = 2;
 /// The spine points a spectral model shows to drag (GET /api/model's view.spineHandles).
 constexpr std::uint32_t kSpineHandles = 9;
-
-/// The per-launch token's size: 192 bits, as Jupyter's (the issue asks for at least 128).
-constexpr std::size_t kTokenBytes = 24;
-/// The longest piece of a refused request's header quoted back in the error message.
-constexpr std::size_t kQuotedHeaderChars = 80;
-
-/// kTokenBytes from the kernel's cryptographic generator (getrandom(2), which waits only
-/// until the pool is first seeded at boot), as lower-case hex.
-std::string randomToken() {
-  unsigned char bytes[kTokenBytes];
-  for (std::size_t done = 0; done < sizeof bytes;) {
-    const ssize_t n = ::getrandom(bytes + done, sizeof bytes - done, 0);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0)
-      throw StudioError(fmt::format("cannot draw the studio's token: getrandom: {}",
-                                    std::strerror(n < 0 ? errno : EIO)));
-    done += static_cast<std::size_t>(n);
-  }
-  std::string hex;
-  for (const unsigned char b : bytes) hex += fmt::format("{:02x}", b);
-  return hex;
-}
-
-/// Whether `a` equals the secret `b`, in a time that depends only on the lengths (the
-/// token's length is no secret): a guess learns nothing from how long the answer takes.
-bool sameSecret(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  volatile unsigned char diff = 0;  // volatile: no early exit once a byte differs
-  for (std::size_t i = 0; i < a.size(); ++i) diff = diff | static_cast<unsigned char>(a[i] ^ b[i]);
-  return diff == 0;
-}
-
-std::string lowerCase(std::string_view text) {
-  std::string out(text);
-  for (char& c : out)
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  return out;
-}
-
-/// A header value as an error message quotes it: at most kQuotedHeaderChars.
-std::string quoted(const std::string& value) {
-  return fmt::format("\"{}{}\"", value.substr(0, kQuotedHeaderChars),
-                     value.size() > kQuotedHeaderChars ? "..." : "");
-}
-
-/// HOST as the authority of a URL: an IPv6 address in brackets.
-std::string urlHost(const std::string& host) {
-  return host.find(':') != std::string::npos ? "[" + host + "]" : host;
-}
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -192,7 +143,7 @@ std::string defaultWebDir() {
 class StudioServer::Impl {
  public:
   Impl(const std::string& modelPath, StudioOptions options)
-      : options_(std::move(options)), token_(options_.requireToken ? randomToken() : "") {
+      : options_(std::move(options)), access_(options_.requireToken) {
     std::error_code ec;
     fs::path model = fs::absolute(modelPath, ec);
     if (!fs::exists(model, ec) || fs::is_directory(model, ec))
@@ -221,7 +172,7 @@ class StudioServer::Impl {
     }
     if (port_ < 0)
       throw StudioError(fmt::format("cannot listen on {}:{}", options_.host, options_.port));
-    allowAddresses();
+    access_.bind(options_.host, port_);
     thread_ = std::thread([this] { server_.listen_after_bind(); });
     // stop() before the server runs would be lost: wait until it does.
     for (int i = 0; i < 5000 && !server_.is_running(); ++i)
@@ -239,9 +190,9 @@ class StudioServer::Impl {
   void flushJournal() { journal_.flush(); }
   std::string url() const {
     return fmt::format("http://{}:{}/{}", urlHost(options_.host), port_,
-                       token_.empty() ? "" : "?token=" + token_);
+                       access_.token().empty() ? "" : "?token=" + access_.token());
   }
-  const std::string& token() const { return token_; }
+  const std::string& token() const { return access_.token(); }
   std::string root() const { return sandbox_.root().string(); }
   std::string webDir() const { return webDir_.string(); }
   std::string modelPath() const {
@@ -250,70 +201,6 @@ class StudioServer::Impl {
   }
 
  private:
-  // ------------------------------------------------------------------------------------
-  // Who may ask (apps/studio/README.md, "Security")
-
-  /// The Host values that name this server (lower case): its address and port as bound,
-  /// and for a loopback address also localhost (and the reverse). A web page of another
-  /// name that resolves to 127.0.0.1 (DNS rebinding) sends its own name and is refused.
-  void allowAddresses() {
-    const std::string host = lowerCase(options_.host);
-    std::vector<std::string> names = {urlHost(host)};
-    if (host == "127.0.0.1" || host == "::1") names.push_back("localhost");
-    if (host == "localhost") names.insert(names.end(), {"127.0.0.1", "[::1]"});
-    hosts_.clear();
-    origins_.clear();
-    for (const std::string& name : names) {
-      const std::string authority = fmt::format("{}:{}", name, port_);
-      hosts_.push_back(authority);
-      origins_.push_back("http://" + authority);
-      if (port_ == 80) {  // the default port may be left out of Host and Origin
-        hosts_.push_back(name);
-        origins_.push_back("http://" + name);
-      }
-    }
-  }
-
-  /// Why a request is refused before any handler runs, or nothing. Every request needs a
-  /// Host naming this server. Except the page's own files (GET and HEAD outside /api/),
-  /// a request needs no foreign Origin and the token; a request other than GET and HEAD
-  /// (every one that changes something) declares a JSON body, which a browser sends to
-  /// another origin only after a preflight this server never grants.
-  std::optional<HttpError> refusal(const httplib::Request& req) const {
-    // Exactly one `name` header, its value (any case) one of `allowed`.
-    const auto oneOf = [&req](const char* name, const std::vector<std::string>& allowed) {
-      return req.get_header_value_count(name) == 1 &&
-             std::find(allowed.begin(), allowed.end(), lowerCase(req.get_header_value(name))) !=
-                 allowed.end();
-    };
-    if (!oneOf("Host", hosts_))
-      return HttpError{403, fmt::format("request refused: Host {} is not this studio's address "
-                                        "{} (a web page of another name is not the studio's)",
-                                        quoted(req.get_header_value("Host")), hosts_.front())};
-    const bool safe = req.method == "GET" || req.method == "HEAD";
-    if (safe && !req.path.starts_with("/api")) return std::nullopt;
-    if (req.has_header("Origin") && !oneOf("Origin", origins_))
-      return HttpError{403, fmt::format("request refused: Origin {} is not the studio's page {} "
-                                        "(another web page may not use the studio)",
-                                        quoted(req.get_header_value("Origin")), origins_.front())};
-    if (!token_.empty() && (req.get_header_value_count(kTokenHeader) != 1 ||
-                            !sameSecret(req.get_header_value(kTokenHeader), token_)))
-      return HttpError{403, fmt::format("request refused: missing or wrong {} (open the URL "
-                                        "`pdesurf studio` printed, with its ?token=)",
-                                        kTokenHeader)};
-    if (!safe) {
-      const std::string type = req.get_header_value("Content-Type");
-      std::string_view media = std::string_view(type).substr(0, type.find(';'));
-      while (!media.empty() && (media.back() == ' ' || media.back() == '\t'))
-        media.remove_suffix(1);
-      if (lowerCase(media) != "application/json")
-        return HttpError{415, fmt::format("request refused: a {} must declare Content-Type: "
-                                          "application/json (found {})",
-                                          req.method, type.empty() ? "none" : quoted(type))};
-    }
-    return std::nullopt;
-  }
-
   // ------------------------------------------------------------------------------------
   // The session
 
@@ -606,12 +493,12 @@ class StudioServer::Impl {
 
   using Handler = std::function<void(const httplib::Request&, httplib::Response&)>;
 
-  /// Refuses what refusal() refuses (the body is read by now), locks, and turns HttpError,
-  /// ModelError and other exceptions into JSON errors.
+  /// Refuses what AccessGuard::refusal refuses (the body is read by now), locks, and turns
+  /// HttpError, ModelError and other exceptions into JSON errors.
   Handler guarded(Handler handler) {
     return [this, handler](const httplib::Request& req, httplib::Response& res) {
       try {
-        if (const std::optional<HttpError> refused = refusal(req))
+        if (const std::optional<HttpError> refused = access_.refusal(req))
           fail(refused->status, refused->message);
         std::lock_guard lock(mutex_);
         handler(req, res);
@@ -668,17 +555,17 @@ class StudioServer::Impl {
         [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
           sendJson(res, {{"error", "internal error"}}, 500);
         });
-    // The checks of refusal() run before the page's files and the routes. A request with a
-    // body for the API is checked by guarded() instead, once its body is read: answering
-    // before would leave the body unread, and the kernel would reset the connection (the
-    // answer lost) when it closes. Any other request with a body is an attacker's or a
-    // mistake: refused, and the connection closed.
+    // The checks of AccessGuard::refusal run before the page's files and the routes. A request with
+    // a body for the API is checked by guarded() instead, once its body is read: answering before
+    // would leave the body unread, and the kernel would reset the connection (the answer lost) when
+    // it closes. Any other request with a body is an attacker's or a mistake: refused, and the
+    // connection closed.
     server_.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       const bool body =
           req.has_header("Transfer-Encoding") ||
           std::strtoull(req.get_header_value("Content-Length").c_str(), nullptr, 10) > 0;
       if (body && req.path.starts_with("/api/")) return httplib::Server::HandlerResponse::Unhandled;
-      const std::optional<HttpError> refused = refusal(req);
+      const std::optional<HttpError> refused = access_.refusal(req);
       if (!refused) return httplib::Server::HandlerResponse::Unhandled;
       sendJson(res, {{"error", refused->message}}, refused->status);
       if (body) res.set_header("Connection", "close");
@@ -959,10 +846,8 @@ class StudioServer::Impl {
   }
 
   StudioOptions options_;
-  const std::string token_;           // empty: none required (--no-token)
-  std::vector<std::string> hosts_;    // the Host values naming this server, lower case
-  std::vector<std::string> origins_;  // "http://" + each of hosts_
-  RootSandbox sandbox_;               // every path of a request resolves inside its root
+  AccessGuard access_;   // the token, and the Host and Origin values naming this server
+  RootSandbox sandbox_;  // every path of a request resolves inside its root
   fs::path webDir_;
   httplib::Server server_;
   std::thread thread_;
