@@ -111,8 +111,7 @@ std::optional<HttpError> AccessGuard::refusal(const httplib::Request& req) const
   if (!safe) {
     const std::string type = req.get_header_value("Content-Type");
     std::string_view media = std::string_view(type).substr(0, type.find(';'));
-    while (!media.empty() && (media.back() == ' ' || media.back() == '\t'))
-      media.remove_suffix(1);
+    while (!media.empty() && (media.back() == ' ' || media.back() == '\t')) media.remove_suffix(1);
     if (lowerCase(media) != "application/json")
       return HttpError{415, fmt::format("request refused: a {} must declare Content-Type: "
                                         "application/json (found {})",

@@ -152,6 +152,41 @@ test('a box in the surface view selects the vertices seen, none hidden behind th
   await page.screenshot({ path: shot('modeller-surface-box.png') });
 });
 
+test('a click on a vertex seen in the surface view selects it; a vertex behind the surface is never picked', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'tube', 'tube.json', 6, 1);
+  const m = await model(studio);
+  const radius = Math.max(...m.vertices.map((p: number[]) => Math.hypot(p[0], p[1])));
+  await page.getByTestId('view-front').click();
+  await page.waitForTimeout(400);
+  const indices = m.vertices.map((_: unknown, i: number) => i);
+  // Front vertices near the middle of the view (the tube's ends are off its edges).
+  const front = indices.filter((i: number) => m.vertices[i][1] < -0.5 * radius);
+  const back = indices.filter((i: number) => m.vertices[i][1] > 0.5 * radius);
+  const screen = async (v: number) => (await hook<Point & { visible: boolean }>(page, 'vertexSurfaceScreen', v))!;
+  const selected = async () => (await hook<{ vertices: number[] }>(page, 'selection')).vertices;
+
+  const [a, b] = front;
+  const pa = await screen(a);
+  await page.mouse.click(pa.x + 2, pa.y - 2); // within the pick radius, not on the dot
+  await expect.poll(selected).toEqual([a]);
+  const pb = await screen(b);
+  await page.keyboard.down('Shift');
+  await page.mouse.click(pb.x, pb.y);
+  await page.keyboard.up('Shift');
+  await expect.poll(selected).toEqual([a, b]);
+
+  // At a back vertex's own screen point (distance 0) a click picks a front one or none:
+  // never the vertex the surface hides.
+  for (const v of back) {
+    const p = await screen(v);
+    if (!p.visible) continue;
+    await page.mouse.click(p.x, p.y);
+    await settle(page);
+    expect(await selected()).not.toContain(v);
+  }
+});
+
 test('draw a force rectangle on a patch, resize it by a handle, edit its numbers; undone byte for byte', async ({ page, studio }) => {
   await openStudio(page, studio);
   await newModel(page, 'single', 'force.json');

@@ -83,10 +83,11 @@ test('build an L of 3 frames from nothing: new, box select, extrude twice, save,
   const fresh = fileText(studio, 'l.json');
   expect(await frames(studio)).toBe(1);
 
-  // The u = 1 side (vertices 2, 5, 8 of the 3 × 3 lattice) by a shift+drag box.
+  // The u = 1 side (the frame's P3, P4, P5) by a shift+drag box.
   await page.getByTestId('view-top').click();
-  const a = await hooks(page).vertexScreen(2);
-  const b = await hooks(page).vertexScreen(8);
+  const side: number[] = (await studio.state()).model.frames[0].vertices.slice(2, 5);
+  const a = await hooks(page).vertexScreen(side[0]);
+  const b = await hooks(page).vertexScreen(side[2]);
   await page.mouse.move(a.x + 12, a.y + 12);
   await page.keyboard.down('Shift');
   await page.mouse.down();
@@ -94,7 +95,7 @@ test('build an L of 3 frames from nothing: new, box select, extrude twice, save,
   await page.screenshot({ path: shot('modeller-box.png') });
   await page.mouse.up();
   await page.keyboard.up('Shift');
-  expect((await hooks(page).selection()).vertices.sort()).toEqual([2, 5, 8]);
+  expect((await hooks(page).selection()).vertices.sort()).toEqual([...side].sort());
   await page.keyboard.press('e');
   await expect.poll(() => frames(studio)).toBe(2);
 

@@ -558,6 +558,10 @@ VertexFrameModel newFrameModel(const NewModelOptions& options) {
   const auto at = [&](std::uint32_t i, std::uint32_t j) { return j * cols + i % cols; };
   for (std::uint32_t b = 0; b < fv; ++b)
     for (std::uint32_t a = 0; a < fu; ++a) model.frames.push_back(latticeFrame(at, 2 * a, 2 * b));
+  // The frames' centres are lattice points no frame uses: a new model has no such vertex.
+  std::vector<std::uint8_t> unused = usedVertices(model);
+  for (std::uint8_t& u : unused) u = !u;
+  dropVertices(model, unused);
   return model;
 }
 

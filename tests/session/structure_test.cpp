@@ -79,13 +79,22 @@ bool contains(const std::string& text, std::string_view part) {
 TEST(NewModel, SingleGridAndTube) {
   const VertexFrameModel one = newModel(NewModelOptions::Kind::Single, 5, 5);
   EXPECT_EQ(one.frames.size(), 1u);
-  EXPECT_EQ(one.vertices.size(), 9u);  // the 3 × 3 lattice; its centre is unused
+  EXPECT_EQ(one.vertices.size(), 8u);  // the 3 × 3 lattice but its centre, which no frame uses
   const VertexFrameModel grid = newModel(NewModelOptions::Kind::Grid, 3, 2);
   EXPECT_EQ(grid.frames.size(), 6u);
+  EXPECT_EQ(grid.vertices.size(), 7u * 5 - 6);    // the 7 × 5 lattice but the 6 frame centres
   EXPECT_EQ(sharedEdges(grid), 2u * 2 + 3u * 1);  // (u - 1) v inner columns, u (v - 1) rows
   EXPECT_TRUE(facesOneWay(grid));
   const VertexFrameModel tube = newModel(NewModelOptions::Kind::Tube, 4, 2);
   EXPECT_EQ(tube.frames.size(), 8u);
+  EXPECT_EQ(tube.vertices.size(), 8u * 5 - 8);  // 8 round × 5 along, but the 8 frame centres
+  // Every vertex of a new model belongs to a frame (no handle that moves nothing).
+  for (const VertexFrameModel* m : {&one, &grid, &tube}) {
+    std::vector<int> uses(m->vertices.size(), 0);
+    for (const Frame& f : m->frames)
+      for (const std::uint32_t v : f.vertices) ++uses[v];
+    EXPECT_EQ(std::count(uses.begin(), uses.end(), 0), 0);
+  }
   EXPECT_EQ(boundaryEdges(tube), 2u * 4);  // only the two rims
   EXPECT_TRUE(facesOneWay(tube));
   EXPECT_LT(relativeGap(tube), kC0RelativeTolerance);

@@ -24,6 +24,9 @@ export const modellerTools: { gizmo?: Gizmo; forces?: ForcesTool } = {};
 
 /** Presses that move less than this many pixels are clicks (not orbits). */
 const CLICK_PIXELS = 5;
+/** A click on the surface view picks a vertex seen within this many pixels of it (the
+ * selection dots are 9 px across; farther, the click picks the patch under it). */
+const SURFACE_VERTEX_PICK_PIXELS = 8;
 
 export interface ModellerActions {
   newModel(): void;
@@ -147,8 +150,10 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     $('vertex-selection').textContent = n === 0 ? 'no vertices' : n === 1 ? '1 vertex' : `${n} vertices`;
   });
 
-  // A click on the surface selects the frame of the patch in front (shift or ctrl: adds or
-  // removes it); shift+drag (ctrl+drag) selects (removes) the vertices seen in a box.
+  // A click on a vertex seen on the surface selects it (shift: adds or removes it, ctrl:
+  // removes it), as in the frame view; elsewhere on the surface the frame of the patch in
+  // front (shift or ctrl: adds or removes it); shift+drag (ctrl+drag) selects (removes) the
+  // vertices seen in a box.
   const picker = new SurfacePicker(studio);
   const canvas = surfaceView.renderer.domElement;
   let press: { x: number; y: number } | null = null;
@@ -160,6 +165,18 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     press = null;
     const mesh = store.state.mesh;
     if (!start || !store.state.model || !mesh || Math.hypot(ev.clientX - start.x, ev.clientY - start.y) >= CLICK_PIXELS) return;
+    const model = store.state.model;
+    const size = modelBox(model).getSize(new THREE.Vector3()).length();
+    const vertex = picker.vertexAt(model.vertices, ev.clientX, ev.clientY, SURFACE_VERTEX_PICK_PIXELS, size);
+    if (vertex !== null) {
+      const mode = ev.shiftKey ? 'toggle' : ev.ctrlKey || ev.metaKey ? 'remove' : null;
+      const next = mode ? toggled(store.state.selectedVertices, vertex, mode) : [vertex];
+      store.update(['selection'], (s) => {
+        s.selectedVertices = next;
+        s.selectedVertex = next.length ? next[next.length - 1] : null;
+      });
+      return;
+    }
     const hit = picker.hit(ev.clientX, ev.clientY);
     const adding = ev.shiftKey || ev.ctrlKey || ev.metaKey;
     void studio.run(async () => {

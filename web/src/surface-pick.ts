@@ -42,6 +42,21 @@ export class SurfacePicker {
     return t >= 0 && t < this.ids.ids.length ? this.ids.ids[t] : null;
   }
 
+  /** The vertex of `vertices` seen nearest a client point, within `pixels` of it, or null
+   * (a vertex hidden behind the surface is never picked, however near on screen). */
+  vertexAt(vertices: readonly Vec3[], clientX: number, clientY: number, pixels: number, size: number): number | null {
+    const view = this.studio.surfaceView;
+    const near: { i: number; d: number }[] = [];
+    vertices.forEach((v, i) => {
+      const s = view.toClient(new THREE.Vector3(...v));
+      const d = Math.hypot(s.x - clientX, s.y - clientY);
+      if (s.visible && d <= pixels) near.push({ i, d });
+    });
+    near.sort((a, b) => a.d - b.d);
+    this.refresh();
+    return near.find(({ i }) => this.seen(vertices[i], size))?.i ?? null;
+  }
+
   /** Whether `p` is seen in the surface view: in front of the camera and not behind the
    * surface (the first hit along the ray toward it is at it, within HIDDEN_TOLERANCE × `size`). */
   seen(p: Vec3, size: number): boolean {

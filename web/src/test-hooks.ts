@@ -1,6 +1,7 @@
 // Hooks for the browser tests and the latency benchmark (e2e/, bench/studio/latency.mjs):
 // where things are on screen, edits through the page, the page's state. Loaded only when
 // a test drives the page (navigator.webdriver) or with ?test=1 (main.ts).
+import * as THREE from 'three';
 import { api } from './api';
 import { modellerTools } from './modeller';
 import type { Edit } from './api';
@@ -86,10 +87,14 @@ export function installTestHooks(studio: Studio): void {
       const p = surfaceView.overlay.object.geometry.getAttribute('position');
       return p ? Array.from(p.array as Float32Array) : [];
     },
-    /** A client point on the surface inside frame `f`'s patch (the modeller's picking). */
+    /** A client point on the surface inside frame `f`'s patch (the modeller's picking): its
+     * centre S(½, ½), the point farthest from the patch's vertices (a click near one picks
+     * the vertex); else a triangle of the patch. */
     patchScreen: async (f: number) => {
       const mesh = store.state.mesh;
       if (!mesh) return null;
+      const centre = await modellerTools.forces?.uvScreen(f, [0.5, 0.5]);
+      if (centre) return centre;
       const { ids } = await api.patchIds(mesh.resolution);
       const mine = [...ids.keys()].filter((t) => ids[t] === f);
       return mine.length ? surfaceView.triangleScreen(mine[Math.floor(mine.length / 2)]) : null;
@@ -104,6 +109,12 @@ export function installTestHooks(studio: Studio): void {
     forceOutlines: () => modellerTools.forces?.drawn() ?? [],
     /** The client point of (u, v) on frame `f`'s patch. */
     uvScreen: (f: number, u: number, v: number) => modellerTools.forces?.uvScreen(f, [u, v]),
+    /** Where vertex `v` of the model is in the surface view: client point, and whether it
+     * is in front of the camera. */
+    vertexSurfaceScreen: (v: number) => {
+      const p = store.state.model?.vertices[v];
+      return p ? surfaceView.toClient(new THREE.Vector3(...p)) : null;
+    },
     /** The page's surface mesh positions, flat xyz. */
     meshPositions: () => Array.from(store.state.mesh?.positions ?? []),
   };
