@@ -132,19 +132,27 @@ test('the gizmo arrow moves the selection along x; Shift+S scales and Shift+R tu
   await undoTo(page, studio, 'move.json', original);
 });
 
-test('a box in the surface view selects the vertices seen, none hidden behind the surface', async ({ page, studio }) => {
+/** A new tube of 6 frames seen from the front (the camera looks along +y, so the back of
+ * the tube, y > 0, is behind its front): its front and back vertices. */
+async function tubeFromTheFront(page: Page, studio: Studio): Promise<{ front: number[]; back: number[] }> {
   await openStudio(page, studio);
   await newModel(page, 'tube', 'tube.json', 6, 1);
   const m = await model(studio);
   const radius = Math.max(...m.vertices.map((p: number[]) => Math.hypot(p[0], p[1])));
-  // Front view: the camera looks along +y, so the back of the tube (y > 0) is behind its front.
   await page.getByTestId('view-front').click();
   await page.waitForTimeout(400);
+  const indices: number[] = m.vertices.map((_: unknown, i: number) => i);
+  return {
+    front: indices.filter((i) => m.vertices[i][1] < -0.5 * radius),
+    back: indices.filter((i) => m.vertices[i][1] > 0.5 * radius),
+  };
+}
+
+test('a box in the surface view selects the vertices seen, none hidden behind the surface', async ({ page, studio }) => {
+  const { front, back } = await tubeFromTheFront(page, studio);
   const box = (await page.getByTestId('surface-view').boundingBox())!;
   await drag(page, { x: box.x + 8, y: box.y + 40 }, { x: box.x + box.width - 8, y: box.y + box.height - 8 }, true);
   const picked: number[] = (await hook<{ vertices: number[] }>(page, 'selection')).vertices;
-  const front = m.vertices.map((_: unknown, i: number) => i).filter((i: number) => m.vertices[i][1] < -0.5 * radius);
-  const back = m.vertices.map((_: unknown, i: number) => i).filter((i: number) => m.vertices[i][1] > 0.5 * radius);
   expect(front.length).toBeGreaterThan(0);
   expect(back.length).toBeGreaterThan(0);
   for (const v of front) expect(picked).toContain(v);
@@ -153,16 +161,7 @@ test('a box in the surface view selects the vertices seen, none hidden behind th
 });
 
 test('a click on a vertex seen in the surface view selects it; a vertex behind the surface is never picked', async ({ page, studio }) => {
-  await openStudio(page, studio);
-  await newModel(page, 'tube', 'tube.json', 6, 1);
-  const m = await model(studio);
-  const radius = Math.max(...m.vertices.map((p: number[]) => Math.hypot(p[0], p[1])));
-  await page.getByTestId('view-front').click();
-  await page.waitForTimeout(400);
-  const indices = m.vertices.map((_: unknown, i: number) => i);
-  // Front vertices near the middle of the view (the tube's ends are off its edges).
-  const front = indices.filter((i: number) => m.vertices[i][1] < -0.5 * radius);
-  const back = indices.filter((i: number) => m.vertices[i][1] > 0.5 * radius);
+  const { front, back } = await tubeFromTheFront(page, studio);
   const screen = async (v: number) => (await hook<Point & { visible: boolean }>(page, 'vertexSurfaceScreen', v))!;
   const selected = async () => (await hook<{ vertices: number[] }>(page, 'selection')).vertices;
 
