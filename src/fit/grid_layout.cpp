@@ -198,19 +198,25 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
     return (b + (span > 0.0 ? (share - c[b]) / span : 0.0)) / kAreaBins;
   };
 
-  // The (2U+1) × (2V+1) lattice of frame vertices, each where its (u, v) lies on the mesh.
+  // The (2U+1) × (2V+1) lattice of frame vertices, each where its (u, v) lies on the mesh,
+  // but the frames' centres (odd i and j), which no frame uses.
   VertexFrameModel model;
   const std::uint32_t nu = 2 * options.u + 1, nv = 2 * options.v + 1;
-  model.vertices.reserve(std::size_t{nu} * nv);
+  std::vector<std::uint32_t> vertexOfPoint(std::size_t{nu} * nv, 0);
+  model.vertices.reserve(std::size_t{nu} * nv - std::size_t{options.u} * options.v);
   for (std::uint32_t j = 0; j < nv; ++j)
     for (std::uint32_t i = 0; i < nu; ++i) {
+      if (i % 2 == 1 && j % 2 == 1) continue;
+      vertexOfPoint[std::size_t{j} * nu + i] = static_cast<std::uint32_t>(model.vertices.size());
       const Eigen::Vector2d p(line(0, static_cast<double>(i) / (nu - 1)),
                               line(1, static_cast<double>(j) / (nv - 1)));
       const auto [t, l] = locator.locate(p);
       model.vertices.push_back(l[0] * xyz[tris[t][0]] + l[1] * xyz[tris[t][1]] +
                                l[2] * xyz[tris[t][2]]);
     }
-  auto at = [&](std::uint32_t i, std::uint32_t j) { return j * nu + i; };
+  auto at = [&](std::uint32_t i, std::uint32_t j) {
+    return vertexOfPoint[std::size_t{j} * nu + i];
+  };
   for (std::uint32_t r = 0; r < options.v; ++r)
     for (std::uint32_t c = 0; c < options.u; ++c)
       model.frames.push_back(detail::latticeFrame(at, 2 * c, 2 * r));

@@ -1,5 +1,6 @@
 // Layouts: a quad mesh's topology reproduced by its frames; a U × V grid on a disk.
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <map>
 #include <set>
@@ -118,7 +119,11 @@ TEST(GridLayout, LaysAUByVGridOnADiskWithItsVerticesOnTheMesh) {
   const Mesh disk = readMesh(path);
   const VertexFrameModel model = gridLayout(disk, {5, 3}, path);
   EXPECT_EQ(model.frames.size(), 15u);
-  EXPECT_EQ(model.vertices.size(), 11u * 7u);
+  EXPECT_EQ(model.vertices.size(), 11u * 7u - 15u);  // the lattice but the frames' centres
+  std::vector<int> uses(model.vertices.size(), 0);
+  for (const Frame& f : model.frames)
+    for (const std::uint32_t v : f.vertices) ++uses[v];
+  EXPECT_EQ(std::count(uses.begin(), uses.end(), 0), 0);  // every vertex is a frame's
   const FrameTopology topo = buildTopology(model);
   // A grid: 2UV + U + V edges, interior ones shared by two frames.
   EXPECT_EQ(topo.edges.size(), 2u * 15u + 5u + 3u);
