@@ -5,8 +5,27 @@
 // ctrl adds or removes), click empty space to clear the selection. Installed before the orbit
 // controls, so a press the tool takes never orbits.
 import type { Vec3 } from './api';
+import type { Topic } from './store';
 import type { Studio } from './studio';
 import { toggled } from './structure';
+
+/** Puts each vertex of `moved` at its start `from[i]` offset by `d` in the store (one update,
+ * announcing `topics`), and moves the frame view's handles of those but `skip` (a handle the
+ * store's 'vertex' subscriber moves itself). Shared by the handle drag and the move gizmo. */
+export function offsetVertices(
+  studio: Studio,
+  moved: readonly number[],
+  from: readonly Vec3[],
+  d: readonly [number, number, number],
+  topics: Topic[],
+  skip: number | null = null,
+): void {
+  const { store, frameView } = studio;
+  store.update(topics, (s) => {
+    moved.forEach((v, i) => (s.model!.vertices[v] = [from[i][0] + d[0], from[i][1] + d[1], from[i][2] + d[2]]));
+  });
+  for (const v of moved) if (v !== skip) frameView.moveVertex(v, store.state.model!.vertices[v]);
+}
 
 /** Presses that move less than this many pixels are clicks. */
 const CLICK_PIXELS = 5;
@@ -88,11 +107,8 @@ export function mountDragTool(studio: Studio): void {
     const start = from[moved.indexOf(vertex)];
     const target = frameView.dragTarget(start, ev.clientX, ev.clientY);
     if (!target) return;
-    const d = [target[0] - start[0], target[1] - start[1], target[2] - start[2]];
-    store.update(['vertex'], (s) => {
-      moved.forEach((v, i) => (s.model!.vertices[v] = [from[i][0] + d[0], from[i][1] + d[1], from[i][2] + d[2]]));
-    });
-    for (const v of moved) if (v !== store.state.selectedVertex) frameView.moveVertex(v, store.state.model!.vertices[v]);
+    const d = [target[0] - start[0], target[1] - start[1], target[2] - start[2]] as const;
+    offsetVertices(studio, moved, from, d, ['vertex'], store.state.selectedVertex);
     const position = (v: number) => [...store.state.model!.vertices[v]] as Vec3;
     pump.push(() =>
       moved.length === 1

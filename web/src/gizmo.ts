@@ -6,6 +6,7 @@
 import * as THREE from 'three';
 import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import type { Vec3 } from './api';
+import { offsetVertices } from './drag';
 import { boxCentre } from './selection-transform';
 import type { Studio } from './studio';
 
@@ -79,8 +80,7 @@ export function mountGizmo(studio: Studio): Gizmo {
     if (!drag || !store.state.model) return;
     const { moved, from } = drag;
     const d = proxy.position.clone().sub(drag.start);
-    store.update([], (s) => moved.forEach((v, i) => (s.model!.vertices[v] = [from[i][0] + d.x, from[i][1] + d.y, from[i][2] + d.z])));
-    for (const v of moved) frameView.moveVertex(v, store.state.model!.vertices[v]);
+    offsetVertices(studio, moved, from, [d.x, d.y, d.z], []);
     const positions = moved.map((v) => [...store.state.model!.vertices[v]] as Vec3);
     pump.push(() => ({ op: 'move-vertices', vertices: moved, positions }));
   });
