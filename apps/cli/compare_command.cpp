@@ -21,6 +21,11 @@ namespace pdesurf::cli {
 
 namespace {
 
+/// What `pdesurf compare --help` says the command does.
+constexpr const char* kCompareHelp =
+    "RMS, mean and largest distance between a model (tessellated as by build) and a mesh, "
+    "both ways, relative to the mesh's bounding-box diagonal";
+
 /// `pdesurf compare`: Metro-style distances between a model's mesh and a mesh file.
 struct CompareCommand {
   std::string modelPath, meshPath;
@@ -30,10 +35,7 @@ struct CompareCommand {
   SolveArgs solveArgs;
 
   CLI::App* add(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand(
-        "compare",
-        "RMS, mean and largest distance between a model (tessellated as by build) and a mesh, "
-        "both ways, relative to the mesh's bounding-box diagonal");
+    CLI::App* cmd = app.add_subcommand("compare", kCompareHelp);
     addModelFile(cmd, modelPath);
     addMeshFile(cmd, meshPath, "reference mesh file: .off .obj .ply .stl");
     addResolution(cmd, resolution, "samples per patch side, as for build");

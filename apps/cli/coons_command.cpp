@@ -22,6 +22,11 @@ namespace pdesurf::cli {
 
 namespace {
 
+/// What `pdesurf coons --help` says the command does.
+constexpr const char* kCoonsHelp =
+    "Coons patches on the boundary curves of a vertex-frame model's patches (the seed's "
+    "baselines): bicubic with tangents w1 α(u), w2 β(u), w3 γ(v), w4 δ(v), or bilinear";
+
 /// `pdesurf coons`: bilinear or bicubic Coons patches on the boundaries of a model's
 /// vertex-frame patches (the seed 000 §4.2 baselines), written as a mesh.
 struct CoonsCommand {
@@ -33,10 +38,7 @@ struct CoonsCommand {
   SolveArgs solveArgs;
 
   CLI::App* add(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand(
-        "coons",
-        "Coons patches on the boundary curves of a vertex-frame model's patches (the seed's "
-        "baselines): bicubic with tangents w1 α(u), w2 β(u), w3 γ(v), w4 δ(v), or bilinear");
+    CLI::App* cmd = app.add_subcommand("coons", kCoonsHelp);
     addModelFile(cmd, modelPath, "vertex-frames model file (JSON)");
     addMeshOutput(cmd, outPath);
     cmd->add_option("--frame", frames, "the frames to fill (default: every frame)");

@@ -19,6 +19,11 @@ namespace pdesurf::cli {
 
 namespace {
 
+/// What `pdesurf slice --help` says the command does.
+constexpr const char* kSliceHelp =
+    "Cut a mesh (OFF, OBJ, PLY, STL) by planes perpendicular to an axis; print each "
+    "plane's largest closed loop (or the one --near / --track pick) as JSON";
+
 /// `pdesurf slice`: each plane's largest closed loop, as JSON.
 struct SliceCommand {
   std::string meshPath, outPath, axis;
@@ -27,10 +32,7 @@ struct SliceCommand {
   bool track = false;
 
   CLI::App* add(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand(
-        "slice",
-        "Cut a mesh (OFF, OBJ, PLY, STL) by planes perpendicular to an axis; print each "
-        "plane's largest closed loop (or the one --near / --track pick) as JSON");
+    CLI::App* cmd = app.add_subcommand("slice", kSliceHelp);
     addMeshFile(cmd, meshPath);
     cmd->add_option("--axis", axis, "axis the planes are perpendicular to: x, y or z")
         ->required()

@@ -1,0 +1,159 @@
+// The studio's open model file (document.hpp).
+#include "document.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <system_error>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "http_error.hpp"
+#include "pdesurf/atomic_file.hpp"
+#include "pdesurf/model_io.hpp"
+
+namespace pdesurf::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+/// The spine points a spectral model shows to drag (GET /api/model's view.spineHandles).
+constexpr std::uint32_t kSpineHandles = 9;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the file", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Json polylines(const std::vector<std::vector<Vec3>>& lines) {
+  Json out = Json::array();
+  for (const std::vector<Vec3>& polyline : lines) {
+    Json line = Json::array();
+    for (const Vec3& q : polyline) line.push_back({q.x(), q.y(), q.z()});
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
+}  // namespace
+
+Json Document::status() const {
+  return {{"revision", revision()},
+          {"undo", session_->undoDepth()},
+          {"redo", session_->redoDepth()},
+          {"dirty", revision() != savedRevision_}};
+}
+
+Json Document::openedStatus() const {
+  Json out = status();
+  out["path"] = sandbox_.relative(path_);
+  out["recovery"] = recovery_;
+  return out;
+}
+
+void Document::requireEditable() const {
+  if (!session_->editable())
+    fail(409, fmt::format("{} models have no vertex frames: this is for vertex-frame models "
+                          "(their curves take shape edits, the whole model POST /api/transform)",
+                          modelTypeName(session_->model())));
+}
+
+void Document::replaceSession(AnyModel model, const std::string& source) {
+  const std::uint64_t next = opened_ ? revision() + 1 : 0;
+  session_ = std::make_unique<ModelSession>(std::move(model), source);
+  base_ = next;
+  opened_ = true;
+}
+
+void Document::open(const fs::path& path, const std::string& source) {
+  journal_.cancel();  // the journal read below must not change underneath
+  const std::string fileText = readFile(path);
+  replaceSession(parseModel(fileText, source), source);  // a type it cannot open throws
+  const std::string text = serializeModel(session_->model());
+  path_ = path;
+  fileText_ = fileText;
+  fileModel_ = text;
+  openedText_ = fileText;
+  openedModel_ = text;
+  savedRevision_ = revision();
+  // An autosave that differs from the file holds edits a crash left unsaved.
+  recovery_ = false;
+  std::error_code ec;
+  if (fs::exists(autosavePath(path_), ec)) {
+    try {
+      const AnyModel saved =
+          parseModel(readFile(autosavePath(path_)), autosavePath(path_).filename().string());
+      recovery_ = serializeModel(saved) != text;
+    } catch (const std::exception&) {
+      recovery_ = false;  // an unreadable journal is no recovery
+    }
+  }
+}
+
+std::string Document::modelText() const {
+  std::string text = serializeModel(session_->model());
+  if (session_->editable()) return text;
+  if (text == fileModel_) return fileText_;
+  // Shape edits undone after a save: the model as opened is written as its file was.
+  return text == openedModel_ ? openedText_ : text;
+}
+
+Json Document::viewCurves() {
+  const ModelOverlay view = overlay(session_->solved());
+  Json out = {{"curves", polylines(view.curves)}, {"spines", polylines(view.spines)}};
+  // A spectral model's spine points to drag (as `pdesurf spine --count` places them).
+  const SpineHandles spine = spineHandles(session_->solved(), kSpineHandles);
+  if (!spine.u.empty())
+    out["spineHandles"] = {{"u", spine.u}, {"points", polylines({spine.points})[0]}};
+  return out;
+}
+
+void Document::autosave() {
+  if (recovery_) return;
+  journal_.write(autosavePath(path_), session_->model());
+}
+
+void Document::save(const fs::path& path) {
+  try {
+    // An untransformed view-only model is saved as its file was (save as: a copy).
+    // Fields the editor does not hold ("description", ...) are kept from a vertex-frame
+    // model's file (keepUnknownFields knows that type's fields; the other types are saved
+    // as their files were unless transformed).
+    const std::string text =
+        session_->frames() ? keepUnknownFields(modelText(), fileText_) : modelText();
+    writeFileAtomically(path.string(), text);
+    fileText_ = text;
+    fileModel_ = serializeModel(session_->model());
+  } catch (const std::exception& e) {
+    fail(500, e.what());
+  }
+  journal_.cancel();
+  std::error_code ec;
+  fs::remove(autosavePath(path), ec);
+  if (path != path_) fs::remove(autosavePath(path_), ec);
+  path_ = path;
+  savedRevision_ = revision();
+  recovery_ = false;
+}
+
+void Document::recover() {
+  if (!recovery_) fail(409, "no autosave to recover");
+  const fs::path journal = autosavePath(path_);
+  replaceSession(parseModel(readFile(journal), sandbox_.relative(journal)),
+                 sandbox_.relative(journal));
+  recovery_ = false;  // the journal now matches the session
+}
+
+void Document::discardRecovery() {
+  if (!recovery_) fail(409, "no autosave to discard");
+  std::error_code ec;
+  fs::remove(autosavePath(path_), ec);
+  if (ec) fail(500, fmt::format("cannot remove the autosave: {}", ec.message()));
+  recovery_ = false;
+}
+
+}  // namespace pdesurf::studio
