@@ -235,8 +235,12 @@ export class Viewport {
     if (!this.dirty) return false;
     this.dirty = false;
     this.draw();
+    ++this.draws;
     return true;
   }
+
+  /** Draws since the page loaded, whole or of a region (tests, benchmarks). */
+  draws = 0;
 
   /** The scene, then the axis gizmo in the bottom-right corner. */
   protected draw(): void {

@@ -33,6 +33,9 @@ export function installTestHooks(studio: Studio): void {
         a.length === b.length && Array.prototype.every.call(a, (x: number, i: number) => x === b[i]);
       return same(full.positions, m.positions) && same(full.normals, m.normals) && same(full.indices, m.indices);
     },
+    /** Each view's draws so far (a region's too), and whether the surface shows its
+     * boundary-curve overlay (benchmarks: what a release draws). */
+    draws: () => ({ frame: frameView.draws, surface: surfaceView.draws, overlay: surfaceView.overlay.object.visible }),
     /** The frame view's region draws so far (a drag's moved handles: scene.ts). */
     frameRegionDraws: () => frameView.regionDraws,
     /** Pixels of the frame view as drawn, then as a whole draw gives them now: how many
