@@ -931,7 +931,7 @@ export class SurfaceView extends Viewport {
   private overlayOn = true;
   /** Whether a gesture's preview is shown (setPreview). */
   private preview = false;
-  /** The boundary curves are of an older surface (a preview ended, new ones not yet here). */
+  /** The boundary curves are of an older surface (a preview showed another; new ones not yet here). */
   private curvesStale = false;
   private curvature: CurvatureMode = 'off';
   /** The colour scale's half-range of the curvature shown (legend), 0 when off. */
@@ -1024,6 +1024,9 @@ export class SurfaceView extends Viewport {
    * (start, count) a delta has rewritten in its arrays (only those are uploaded). */
   showMesh(data: MeshData, runs?: Uint32Array): void {
     this.shown = data;
+    // A surface of the preview: the boundary curves are of an older one (until new ones
+    // come, after the gesture; a press that moved nothing keeps them).
+    if (this.preview) this.curvesStale = true;
     let g = this.geometries.get(data);
     if (!g) {
       g = new THREE.BufferGeometry();
@@ -1079,7 +1082,6 @@ export class SurfaceView extends Viewport {
   setPreview(on: boolean): void {
     if (this.preview === on) return;
     this.preview = on;
-    if (on) this.curvesStale = true;
     this.showOverlay();
     this.pickMaterial();
   }
