@@ -11,8 +11,12 @@
 //   --model: a model file instead of the generated sheet (the vertex dragged is the one
 //   nearest the frame view's centre on screen); --preview 0: the page without its adaptive
 //   preview (?preview=0), the baseline; --releases N: N more drags, each timed from the
-//   button's release to the first frame drawn at full resolution; --query: options added to
-//   the page's URL (aa=1, say).
+//   button's release (pointerup on the frame view's canvas) to the first animation frame
+//   whose surface mesh is at the chosen resolution, then a pixel read back from the surface
+//   view (which waits until its draw is done), with the release's splits (the mesh request,
+//   its body, body to frame, each view's draws until neither drew for a second, the last
+//   surface draw done and whether the boundary curves were back by then); --query: options
+//   added to the page's URL (aa=1, say).
 //
 // Two runs: "step" moves the pointer once, waits until that edit's mesh is on screen, then
 // idles 50 ms (one edit at a time: the latency of one edit); "stream" moves the pointer
