@@ -11,8 +11,12 @@
 //   --model: a model file instead of the generated sheet (the vertex dragged is the one
 //   nearest the frame view's centre on screen); --preview 0: the page without its adaptive
 //   preview (?preview=0), the baseline; --releases N: N more drags, each timed from the
-//   button's release to the first frame drawn at full resolution; --query: options added to
-//   the page's URL (aa=1, say).
+//   button's release (pointerup on the frame view's canvas) to the first animation frame
+//   whose surface mesh is at the chosen resolution, then a pixel read back from the surface
+//   view (which waits until its draw is done), with the release's splits (the mesh request,
+//   its body, body to frame, each view's draws until neither drew for a second, the last
+//   surface draw done and whether the boundary curves were back by then); --query: options
+//   added to the page's URL (aa=1, say).
 //
 // Two runs: "step" moves the pointer once, waits until that edit's mesh is on screen, then
 // idles 50 ms (one edit at a time: the latency of one edit); "stream" moves the pointer
@@ -53,6 +57,8 @@ const MODEL = opt('model', '');
 const PREVIEW = opt('preview', '1') !== '0';
 const RELEASES = Number(opt('releases', 5));
 const QUERY = opt('query', '');
+/** A release's draws are over when neither view drew for this long. */
+const SETTLE_MS = 1000;
 
 // Same launch as e2e/playwright.config.ts.
 const LAUNCH = {
@@ -163,7 +169,21 @@ function watchFrames() {
   canvas.addEventListener('pointerup', () => (T.upAt = performance.now()), { capture: true });
   const key = () => { const s = window.__studio.state(); return `${s.mesh}/${s.resolution}`; };
   T.lastMesh = key();
+  // Every frame in which a view drew (during releases: T.drawLog on), the surface's draws
+  // waited for, whether its boundary-curve overlay was shown.
+  T.drawLog = null;
+  let seen = window.__studio.draws();
   const loop = (ts) => {
+    const d = window.__studio.draws();
+    if (T.drawLog && (d.surface !== seen.surface || d.frame !== seen.frame)) {
+      const e = { raf: performance.now(), surface: d.surface - seen.surface, frame: d.frame - seen.frame, overlay: d.overlay };
+      if (e.surface && gl) {
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+        e.drawn = performance.now();
+      }
+      T.drawLog.push(e);
+    }
+    seen = d;
     const k = key();
     if (k !== T.lastMesh) {
       const st = window.__studio.state();
@@ -362,6 +382,7 @@ async function main() {
     // full resolution (the preview's end).
     const full = Number(RESOLUTION);
     const releases = [];
+    const releaseSplits = [];
     for (let k = 0; k < RELEASES; ++k) {
       await page.evaluate(() => window.__studio.idle());
       await upToDate();
@@ -370,7 +391,7 @@ async function main() {
       await page.mouse.move(h.x, h.y);
       await page.mouse.down();
       for (let j = 1; j <= 3; ++j) { await page.mouse.move(h.x + 3 * j, h.y - 2 * j); await upToDate(); }
-      await page.evaluate(() => Object.assign(window.__bench, { finish: true, frames: [], upAt: undefined }));
+      await page.evaluate(() => Object.assign(window.__bench, { finish: true, frames: [], meshes: [], upAt: undefined, drawLog: [] }));
       // Without a preview the surface is at full resolution already: nothing to wait for.
       const previewed = await page.evaluate((r) => window.__studio.state().resolution !== r, full);
       await page.mouse.up();
@@ -384,8 +405,44 @@ async function main() {
         check();
       }), full);
       releases.push(ms);
+      // What the release drew until the views settled (no draw for SETTLE_MS): each view's
+      // draws, the last surface draw done, the overlay then; the full mesh's request.
+      const after = await page.evaluate(({ settle, r }) => new Promise((resolve) => {
+        const T = window.__bench;
+        const check = () => {
+          const last = T.drawLog.length ? T.drawLog[T.drawLog.length - 1].raf : T.upAt;
+          if (performance.now() - last < settle) { requestAnimationFrame(check); return; }
+          const log = T.drawLog.filter((e) => e.raf >= T.upAt);
+          T.drawLog = null;
+          const surface = log.filter((e) => e.surface);
+          const lastSurface = surface[surface.length - 1];
+          const m = T.meshes.filter((x) => x.sent >= T.upAt && x.revision !== undefined).pop();
+          const f = T.frames.find((x) => x.raf >= T.upAt && x.resolution === r);
+          resolve({
+            surfaceDraws: surface.reduce((n, e) => n + e.surface, 0),
+            frameDraws: log.reduce((n, e) => n + e.frame, 0),
+            settled: lastSurface ? lastSurface.drawn - T.upAt : 0,
+            overlay: lastSurface ? lastSurface.overlay : undefined,
+            toMesh: m ? m.sent - T.upAt : NaN,
+            meshWait: m ? m.headers - m.sent : NaN,
+            meshBody: m ? m.body - m.headers : NaN,
+            bytes: m ? m.bytes : NaN,
+            tessellateMs: m ? m.tessellateMs : NaN,
+            toFrame: m && f ? f.raf - m.body : NaN,
+            gpu: f ? f.drawn - f.raf : NaN,
+          });
+        };
+        check();
+      }), { settle: SETTLE_MS, r: full });
+      if (process.env.BENCH_DEBUG) console.error(JSON.stringify({ release: ms, ...after }));
+      releaseSplits.push(after);
     }
-    if (RELEASES > 0) results.release = stats(releases);
+    if (RELEASES > 0) {
+      results.release = stats(releases);
+      for (const k of ['surfaceDraws', 'frameDraws', 'settled', 'toMesh', 'meshWait', 'meshBody', 'toFrame', 'gpu', 'tessellateMs', 'bytes'])
+        results.release[k] = stats(releaseSplits.map((x) => x[k]));
+      results.release.overlayShown = releaseSplits.filter((x) => x.overlay).length;
+    }
     if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
   } finally {
     await browser.close();
@@ -421,7 +478,23 @@ async function main() {
   if (sm) console.log(`\n60 Hz drag (${sm.pointerEvents} pointer events in ${sm.seconds.toFixed(1)} s, ${sm.edits} edits, ` +
     `${sm.newFrames} new surface frames = ${sm.meshesPerSecond.toFixed(1)}/s):`);
   if (sm) console.log(`  pointer event -> first rAF showing it          ${fmt(sm.latency)}`);
-  if (results.release) console.log(`\nRelease -> first frame drawn at Res ${RESOLUTION} (${results.release.n} drags): ${fmt(results.release)}`);
+  const rl = results.release;
+  if (rl) {
+    console.log(`\nRelease -> first frame drawn at Res ${RESOLUTION} (${rl.n} drags): ${fmt(rl)}`);
+    console.log('  split (medians, p95):');
+    const rrow = (label, k, unit = 'ms') => console.log(`    ${label.padEnd(44)} ${rl[k].p50.toFixed(2).padStart(9)} ${rl[k].p95.toFixed(2).padStart(9)} ${unit}`);
+    rrow('release -> full-resolution mesh asked', 'toMesh');
+    rrow('mesh request -> headers', 'meshWait');
+    rrow('  of which X-Tessellate-Ms', 'tessellateMs');
+    rrow('mesh body read', 'meshBody');
+    rrow('mesh bytes', 'bytes', 'B');
+    rrow('body read -> first rAF with it', 'toFrame');
+    rrow('rAF -> drawn (readPixels)', 'gpu');
+    rrow('surface view draws after the release', 'surfaceDraws', '');
+    rrow('frame view draws after the release', 'frameDraws', '');
+    rrow('release -> last surface draw done (settled)', 'settled');
+    console.log(`    boundary overlay shown at the last draw: ${rl.overlayShown} of ${rl.n}`);
+  }
   console.log(`\nLoad average (1, 5, 15 min) at the start: ${results.loadStart.map((x) => x.toFixed(2)).join(', ')}; at the end: ${loadavg().map((x) => x.toFixed(2)).join(', ')}`);
   console.log(`\nIdle page: one frame every ${results.idleFrame.p50.toFixed(1)} ms (p50 rAF interval, nothing changing)`);
   const met = st.total.p95 <= 16;

@@ -302,4 +302,47 @@ test.describe('analysis on the mug', () => {
     expect((await hooks(page, 'state')).meshDeltas).toBeGreaterThan(deltas);
     expect(await hooks(page, 'meshMatchesServer')).toBe(true);
   });
+
+  test('after a previewed drag the surface view draws what a reload draws, pixel for pixel', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    const p = await hooks(page, 'vertexScreen', 40);
+    await page.mouse.move(p.x, p.y);
+    await page.mouse.down();
+    for (let i = 1; i <= 4; ++i) {
+      await page.mouse.move(p.x + 3 * i, p.y - 4 * i);
+      await settle(page);
+      await meshUpToDate(page);
+    }
+    // The preview: a coarser mesh, drawn into a quarter of the canvas shown twice as large.
+    expect((await hooks(page, 'state')).resolution).toBeLessThan(24);
+    expect((await hooks(page, 'surfacePixels')).transform).toBe('scale(2)');
+    await page.mouse.up();
+    await settle(page);
+    await expect.poll(async () => (await hooks(page, 'state')).resolution).toBe(24);
+    await meshUpToDate(page);
+    // The release's mesh came as a delta written into the kept Res 24 buffers, and the
+    // boundary curves came after it.
+    await expect.poll(async () => (await hooks(page, 'draws')).overlay).toBe(true);
+    const camera = (await hooks(page, 'cameras')).surface;
+    const released = await hooks(page, 'surfacePixels');
+    expect(released.transform).toBe('');
+
+    // A reload makes every buffer afresh from whole meshes; the same camera.
+    await page.reload();
+    await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+    await meshUpToDate(page);
+    await expect.poll(async () => (await hooks(page, 'draws')).overlay).toBe(true);
+    await selectVertex(page, 40); // its dot on the surface, as after the drag
+    await hooks(page, 'setSurfaceCamera', camera);
+    const fresh = await hooks(page, 'surfacePixels');
+    expect([fresh.width, fresh.height]).toEqual([released.width, released.height]);
+    const a = Buffer.from(released.base64, 'base64'), b = Buffer.from(fresh.base64, 'base64');
+    let differ = 0, surface = 0;
+    for (let i = 0; i < a.length; i += 4) {
+      if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) ++differ;
+      if (Math.abs(a[i] - 0xf4) + Math.abs(a[i + 1] - 0xf5) + Math.abs(a[i + 2] - 0xf7) > 30) ++surface; // not the clear colour
+    }
+    expect(surface).toBeGreaterThan(50_000); // the mug covers a good part of the view
+    expect(differ).toBe(0);
+  });
 });

@@ -80,18 +80,20 @@ class AxisGizmo {
     return new THREE.Box2(min, min.clone().addScalar(GIZMO_PIXELS));
   }
 
-  render(renderer: THREE.WebGLRenderer, main: THREE.Camera): void {
+  /** Draws the gizmo; `scale`: into that share of the drawing buffer each way, from its
+   * bottom left (a preview: SurfaceView.draw). */
+  render(renderer: THREE.WebGLRenderer, main: THREE.Camera, scale = 1): void {
     const area = AxisGizmo.area(renderer);
     if (!area) return;
     const size = renderer.getSize(new THREE.Vector2());
     this.camera.quaternion.copy(main.quaternion);
     this.camera.position.set(0, 0, 3).applyQuaternion(main.quaternion);
-    const { x, y } = area.min;
+    const [x, y, side] = [area.min.x * scale, area.min.y * scale, GIZMO_PIXELS * scale];
     const autoClear = renderer.autoClear;
     renderer.autoClear = false;
     renderer.setScissorTest(true);
-    renderer.setScissor(x, y, GIZMO_PIXELS, GIZMO_PIXELS);
-    renderer.setViewport(x, y, GIZMO_PIXELS, GIZMO_PIXELS);
+    renderer.setScissor(x, y, side, side);
+    renderer.setViewport(x, y, side, side);
     renderer.clearDepth();
     renderer.render(this.scene, this.camera);
     renderer.setScissorTest(false);
@@ -134,17 +136,6 @@ export class Viewport {
     this.controls.enableDamping = true;
     this.controls.dampingFactor = 0.15;
     this.controls.addEventListener('change', () => this.invalidate());
-  }
-
-  private readonly fullPixelRatio = Math.min(window.devicePixelRatio, 2);
-
-  /** Draws at `scale` × the screen's pixel density (a preview during a gesture: a software
-   * renderer's cost grows with the pixels filled), or at full density (scale 1). */
-  setPixelScale(scale: number): void {
-    const ratio = this.fullPixelRatio * scale;
-    if (this.renderer.getPixelRatio() === ratio) return;
-    this.renderer.setPixelRatio(ratio);
-    this.resize();
   }
 
   resize(): void {
@@ -235,8 +226,12 @@ export class Viewport {
     if (!this.dirty) return false;
     this.dirty = false;
     this.draw();
+    ++this.draws;
     return true;
   }
+
+  /** Draws since the page loaded, whole or of a region (tests, benchmarks). */
+  draws = 0;
 
   /** The scene, then the axis gizmo in the bottom-right corner. */
   protected draw(): void {
@@ -244,8 +239,20 @@ export class Viewport {
     this.drawGizmo();
   }
 
-  protected drawGizmo(): void {
-    this.gizmo.render(this.renderer, this.camera);
+  protected drawGizmo(scale = 1): void {
+    this.gizmo.render(this.renderer, this.camera, scale);
+  }
+
+  /** How much the canvas is enlarged on screen (a CSS transform from its bottom left). */
+  protected cssScale(): number {
+    return 1;
+  }
+
+  /** The canvas' box in client pixels as laid out (without the enlargement of cssScale). */
+  canvasRect(): { left: number; top: number; width: number; height: number } {
+    const r = this.renderer.domElement.getBoundingClientRect();
+    const k = this.cssScale();
+    return { left: r.left, top: r.bottom - r.height / k, width: r.width / k, height: r.height / k };
   }
 
   /** Renders now and waits for the GPU to finish; the milliseconds it took (benchmarks). */
@@ -260,7 +267,7 @@ export class Viewport {
 
   /** A world point in client (page) pixels, and whether it lies in front of the camera. */
   toClient(p: THREE.Vector3): { x: number; y: number; z: number; visible: boolean } {
-    const rect = this.renderer.domElement.getBoundingClientRect();
+    const rect = this.canvasRect();
     const q = p.clone().project(this.camera);
     return {
       x: rect.left + ((q.x + 1) / 2) * rect.width,
@@ -272,7 +279,7 @@ export class Viewport {
 
   /** The ray through a client point. */
   ray(clientX: number, clientY: number): THREE.Ray {
-    const rect = this.renderer.domElement.getBoundingClientRect();
+    const rect = this.canvasRect();
     const ndc = new THREE.Vector2(
       ((clientX - rect.left) / rect.width) * 2 - 1,
       -((clientY - rect.top) / rect.height) * 2 + 1,
@@ -924,7 +931,7 @@ export class SurfaceView extends Viewport {
   private overlayOn = true;
   /** Whether a gesture's preview is shown (setPreview). */
   private preview = false;
-  /** The boundary curves are of an older surface (a preview ended, new ones not yet here). */
+  /** The boundary curves are of an older surface (a preview showed another; new ones not yet here). */
   private curvesStale = false;
   private curvature: CurvatureMode = 'off';
   /** The colour scale's half-range of the curvature shown (legend), 0 when off. */
@@ -974,7 +981,7 @@ export class SurfaceView extends Viewport {
   /** The triangle of the surface first hit under a client point (the one in front: what
    * is hidden behind the surface is never picked), or null. */
   triangleAt(clientX: number, clientY: number): number | null {
-    const rect = this.renderer.domElement.getBoundingClientRect();
+    const rect = this.canvasRect();
     const ndc = new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
     const raycaster = new THREE.Raycaster();
     raycaster.setFromCamera(ndc, this.camera);
@@ -1017,6 +1024,9 @@ export class SurfaceView extends Viewport {
    * (start, count) a delta has rewritten in its arrays (only those are uploaded). */
   showMesh(data: MeshData, runs?: Uint32Array): void {
     this.shown = data;
+    // A surface of the preview: the boundary curves are of an older one (until new ones
+    // come, after the gesture; a press that moved nothing keeps them).
+    if (this.preview) this.curvesStale = true;
     let g = this.geometries.get(data);
     if (!g) {
       g = new THREE.BufferGeometry();
@@ -1067,15 +1077,58 @@ export class SurfaceView extends Viewport {
   }
 
   /** A gesture's preview (on) or the chosen resolution again (off): during a preview the
-   * view draws at PREVIEW_PIXEL_SCALE of the pixel density, shades with Lambert lighting and
+   * view draws at PREVIEW_PIXEL_SCALE of the pixel density (draw), shades with Lambert lighting and
    * hides the boundary curves (which follow the surface again when the gesture ends). */
   setPreview(on: boolean): void {
     if (this.preview === on) return;
     this.preview = on;
-    this.setPixelScale(on ? PREVIEW_PIXEL_SCALE : 1);
-    if (on) this.curvesStale = true;
     this.showOverlay();
     this.pickMaterial();
+  }
+
+  /** The canvas' CSS scale (1 / PREVIEW_PIXEL_SCALE during a preview), as last drawn. */
+  private shownScale = 1;
+
+  /** During a preview the scene is drawn into the bottom-left PREVIEW_PIXEL_SCALE of the
+   * canvas' drawing buffer each way, and the canvas is shown enlarged by its inverse from its
+   * bottom-left corner (a CSS transform; the view clips the rest), so that the browser's
+   * compositor scales the picture up as it did when the canvas itself was made smaller. The
+   * canvas keeps its size: resizing it (setPixelRatio) reallocates WebGL's drawing buffer,
+   * which held the page's main thread 40-90 ms on SwiftShader at the start and at the end
+   * of every gesture, the release's full-resolution draw waiting behind it (docs/performance.md,
+   * "Studio: adaptive preview"). The transform changes in the draw that needs it, so the
+   * compositor never shows a picture with the other's scale. */
+  protected override draw(): void {
+    const scale = this.preview ? PREVIEW_PIXEL_SCALE : 1;
+    if (scale === 1) super.draw();
+    else {
+      const size = this.renderer.getSize(new THREE.Vector2());
+      this.renderer.setViewport(0, 0, size.x * scale, size.y * scale);
+      // Points sized in screen pixels (the selection's dots) keep their size on screen.
+      const points: THREE.PointsMaterial[] = [];
+      this.scene.traverseVisible((o) => {
+        const m = (o as THREE.Points).material;
+        if (m instanceof THREE.PointsMaterial && !m.sizeAttenuation && !points.includes(m)) points.push(m);
+      });
+      for (const m of points) m.size *= scale;
+      this.renderer.render(this.scene, this.camera);
+      for (const m of points) m.size /= scale;
+      this.drawGizmo(scale);
+      this.renderer.setViewport(0, 0, size.x, size.y);
+    }
+    this.showScale(1 / scale);
+  }
+
+  private showScale(cssScale: number): void {
+    if (this.shownScale === cssScale) return;
+    this.shownScale = cssScale;
+    const style = this.renderer.domElement.style;
+    style.transformOrigin = '0 100%';
+    style.transform = cssScale === 1 ? '' : `scale(${cssScale})`;
+  }
+
+  protected override cssScale(): number {
+    return this.shownScale;
   }
 
   private pickMaterial(): void {

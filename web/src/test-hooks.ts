@@ -33,6 +33,33 @@ export function installTestHooks(studio: Studio): void {
         a.length === b.length && Array.prototype.every.call(a, (x: number, i: number) => x === b[i]);
       return same(full.positions, m.positions) && same(full.normals, m.normals) && same(full.indices, m.indices);
     },
+    /** Each view's draws so far (a region's too), and whether the surface shows its
+     * boundary-curve overlay (benchmarks: what a release draws). */
+    draws: () => ({ frame: frameView.draws, surface: surfaceView.draws, overlay: surfaceView.overlay.object.visible }),
+    /** The surface view drawn now, its drawing buffer read back (RGBA rows from the bottom,
+     * base64), and how much the canvas is shown enlarged (a preview: 2). */
+    surfacePixels: () => {
+      surfaceView.invalidate();
+      surfaceView.renderIfNeeded();
+      const gl = surfaceView.renderer.getContext();
+      const pixels = new Uint8Array(4 * gl.drawingBufferWidth * gl.drawingBufferHeight);
+      gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+      let text = '';
+      for (let i = 0; i < pixels.length; i += 0x8000) text += String.fromCharCode(...pixels.subarray(i, i + 0x8000));
+      const shown = surfaceView.renderer.domElement.style.transform;
+      return { width: gl.drawingBufferWidth, height: gl.drawingBufferHeight, base64: btoa(text), transform: shown };
+    },
+    /** Puts the surface view's camera where `cameras()` said it was (position, target, and
+     * its depth range). */
+    setSurfaceCamera: (c: { position: number[]; target: number[]; near: number; far: number }) => {
+      surfaceView.camera.position.fromArray(c.position);
+      surfaceView.controls.target.fromArray(c.target);
+      surfaceView.camera.near = c.near;
+      surfaceView.camera.far = c.far;
+      surfaceView.camera.updateProjectionMatrix();
+      surfaceView.controls.update();
+      surfaceView.invalidate();
+    },
     /** The frame view's region draws so far (a drag's moved handles: scene.ts). */
     frameRegionDraws: () => frameView.regionDraws,
     /** Pixels of the frame view as drawn, then as a whole draw gives them now: how many
@@ -71,7 +98,7 @@ export function installTestHooks(studio: Studio): void {
       Object.fromEntries(
         (['frame', 'surface'] as const).map((name) => {
           const v = name === 'frame' ? frameView : surfaceView;
-          return [name, { direction: v.viewDirection().toArray(), target: v.controls.target.toArray(), position: v.camera.position.toArray() }];
+          return [name, { direction: v.viewDirection().toArray(), target: v.controls.target.toArray(), position: v.camera.position.toArray(), near: v.camera.near, far: v.camera.far }];
         }),
       ),
     /** What the surface view shows: its material, zebra settings, curvature scale. */
