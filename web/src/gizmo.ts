@@ -59,8 +59,8 @@ export function mountGizmo(studio: Studio): Gizmo {
   let on = false;
   const toggleBox = document.querySelector<HTMLInputElement>('[data-testid="gizmo"]');
 
-  /** A drag: the vertices it moves and where they started. */
-  let drag: { moved: number[]; from: Vec3[]; start: THREE.Vector3 } | null = null;
+  /** A drag of the vertex selection: the vertices it moves and where they started. */
+  let drag: { moved: number[]; from: Vec3[] } | null = null;
 
   /** The vertex selection as the gizmo's subject. */
   const vertexSubject: GizmoSubject = {
@@ -72,7 +72,7 @@ export function mountGizmo(studio: Studio): Gizmo {
     begin: () => {
       const model = store.state.model!;
       const moved = selectionVertices(studio);
-      drag = { moved, from: moved.map((v) => [...model.vertices[v]] as Vec3), start: proxy.position.clone() };
+      drag = { moved, from: moved.map((v) => [...model.vertices[v]] as Vec3) };
       studio.beginGesture('gizmo');
     },
     move: (d) => {
