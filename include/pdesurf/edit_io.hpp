@@ -38,7 +38,9 @@ GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model);
 /// (session.hpp: ShapeEdit), with an optional "group" as parseEdit's:
 ///   {"op": "move-curve-points", "curve": 2, "points": [0, 5], "positions": [[x, y, z], ...]}
 ///   {"op": "transform-curve", "curve": 1, "translate": [...], "rotate": {...}, "scale": s,
-///    "center": [...]}  (the fields of parseTransform)
+///    "center": [...], "from": "group-start"}  (the fields of parseTransform; "from", with a
+///    "group": applied to the model before the group's first edit, a drag's absolute step)
+///   {"op": "set-fourier", "curve": 2, "a0": [...], "a": [[...], ...], "b": [...]}  (any)
 ///   {"op": "set-operator", "operator": "ugail" | "fu", "N": 3, "a": 2, "modes": 6,
 ///    "remainder": true}  (any of them; chains: a, modes, remainder)
 ///   {"op": "set-spine", "spine": [{"u": [...], "moved": [[x, y, z], ...]}]}  (the file's field)

@@ -162,6 +162,18 @@ struct MoveCurvePoints {
 struct TransformCurve {
   CurveRef curve;
   AffineMap map;
+  /// The map applies to the model as it was before the edit's group began (JSON "from":
+  /// "group-start"), not to the current one: a drag's steps are then absolute, each one
+  /// replacing the last, so the dragged curve ends exactly one map away from where it was.
+  bool fromGroupStart = false;
+};
+/// Sets coefficients of a curve given by Fourier coefficients (a spectral condition's, a
+/// section's): a0 and/or the whole lists a, b (absolute: one drag step). The studio drags a
+/// Fourier derivative condition's a0, the mean direction the surface leaves its curve in.
+struct SetFourier {
+  CurveRef curve;
+  std::optional<Vec3> a0;
+  std::optional<std::vector<Vec3>> a, b;
 };
 /// Changes a spectral model's operator and options, or a chain's a and modes.
 struct SetOperator {
@@ -195,8 +207,8 @@ struct MoveControlPoints {
   std::vector<Vec3> positions;
 };
 
-using ShapeEdit = std::variant<MoveCurvePoints, TransformCurve, SetOperator, SetSpine, AddSection,
-                               RemoveSection, MoveControlPoints>;
+using ShapeEdit = std::variant<MoveCurvePoints, TransformCurve, SetFourier, SetOperator, SetSpine,
+                               AddSection, RemoveSection, MoveControlPoints>;
 /// A shape edit as the studio sends it, with its undo group (as GroupedEdit).
 struct GroupedShapeEdit {
   ShapeEdit edit;
@@ -245,6 +257,12 @@ class UndoHistory {
   std::size_t undoDepth() const { return undo_.size(); }
   std::size_t redoDepth() const { return redo_.size(); }
   void endGroup() { group_.clear(); }
+  /// The snapshot taken when the open group `group` began (the value before its first
+  /// change); nullptr when `group` is empty or not the open group.
+  const Model* groupStart(std::string_view group) const {
+    if (group.empty() || group != group_ || undo_.empty()) return nullptr;
+    return &undo_.back();
+  }
 
  private:
   /// Moves `current` onto `to` and the last of `from` into its place.
@@ -303,7 +321,8 @@ class ModelSession {
   void transform(const AffineMap& map);
   /// Applies a shape edit (spectral, cross-section, B-spline PDE models: takesShapeEdits):
   /// the result checked and solved first (ModelError: the session as it was), grouped as
-  /// apply's edits are.
+  /// apply's edits are. A TransformCurve from the group's start applies to the model as it
+  /// was before `group`'s first edit (the current model when none came yet).
   void apply(const ShapeEdit& edit, std::string_view group = {});
   bool undo();
   bool redo();

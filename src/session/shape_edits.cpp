@@ -273,11 +273,38 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
     e.positions = positions(rd, doc, e.points.size());
     out.edit = std::move(e);
   } else if (name == "transform-curve") {
-    onlyMembers(rd, doc, {"curve", "translate", "rotate", "scale", "center"});
+    onlyMembers(rd, doc, {"curve", "translate", "rotate", "scale", "center", "from"});
     TransformCurve e;
     e.curve = curveRef(rd, doc);
     curveTarget(copy, e.curve, "$.curve");
     e.map = inlineTransform(doc);
+    if (auto it = doc.find("from"); it != doc.end()) {
+      e.fromGroupStart = rd.choice<bool>(*it, "$.from", {{"group-start", true}});
+      if (out.group.empty())
+        rd.fail("$.from",
+                "\"from\": \"group-start\" needs the edit's \"group\" (the drag "
+                "whose start it names)");
+    }
+    out.edit = std::move(e);
+  } else if (name == "set-fourier") {
+    onlyMembers(rd, doc, {"curve", "a0", "a", "b"});
+    SetFourier e;
+    e.curve = curveRef(rd, doc);
+    const CurveTarget target = curveTarget(copy, e.curve, "$.curve");
+    if (!target.input || !std::holds_alternative<FourierCurve>(*target.input))
+      rd.fail("$.curve", fmt::format("{} is not given by Fourier coefficients: move its points "
+                                     "(move-curve-points)",
+                                     target.path));
+    if (auto it = doc.find("a0"); it != doc.end()) e.a0 = rd.vec3(*it, "$.a0");
+    for (auto [key, list] : {std::pair{"a", &e.a}, {"b", &e.b}})
+      if (auto it = doc.find(key); it != doc.end()) {
+        const std::string path = fmt::format("$.{}", key);
+        rd.expectArray(*it, path, 0);
+        list->emplace();
+        for (std::size_t n = 0; n < it->size(); ++n)
+          (*list)->push_back(rd.vec3((*it)[n], fmt::format("{}[{}]", path, n)));
+      }
+    if (!e.a0 && !e.a && !e.b) rd.fail("$", "set-fourier needs \"a0\", \"a\" or \"b\"");
     out.edit = std::move(e);
   } else if (name == "set-operator") {
     only(spectral || sections, "spectral and cross-sections");
@@ -355,13 +382,13 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
   } else if (name == "move-vertex" || name == "move-vertices" || name == "set-parameters" ||
              name == "set-forces" || name == "set-shared-forces") {
     rd.fail("$.op", fmt::format("\"{}\" edits vertex-frame models; a {} model takes "
-                                "move-curve-points, transform-curve, set-operator, set-spine, "
-                                "add-section, remove-section, move-control-points",
+                                "move-curve-points, transform-curve, set-fourier, set-operator, "
+                                "set-spine, add-section, remove-section, move-control-points",
                                 name, modelTypeName(model)));
   } else {
     rd.fail("$.op", fmt::format("unknown edit \"{}\" for a {} model (known: move-curve-points, "
-                                "transform-curve, set-operator, set-spine, add-section, "
-                                "remove-section, move-control-points)",
+                                "transform-curve, set-fourier, set-operator, set-spine, "
+                                "add-section, remove-section, move-control-points)",
                                 name, modelTypeName(model)));
   }
   return out;
@@ -385,6 +412,15 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
           } else {
             for (Vec3& p : *target.points) p = target.vectors ? e.map.vector(p) : e.map.point(p);
           }
+        } else if constexpr (std::is_same_v<T, SetFourier>) {
+          auto& c = std::get<FourierCurve>(*curveTarget(next, e.curve, "$.curve").input);
+          if (e.a0) c.a0 = *e.a0;
+          if (e.a) c.a = *e.a;
+          if (e.b) c.b = *e.b;
+          // As the file reads them: the shorter list is the longer one's zeros.
+          const std::size_t terms = std::max(c.a.size(), c.b.size());
+          c.a.resize(terms, Vec3::Zero());
+          c.b.resize(terms, Vec3::Zero());
         } else if constexpr (std::is_same_v<T, SetOperator>) {
           if (auto* m = std::get_if<SpectralModel>(&next)) {
             SpectralOperator& op = m->op;
@@ -456,7 +492,10 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
 void ModelSession::apply(const ShapeEdit& edit, std::string_view group) {
   if (!takesShapeEdits(model()))
     throw std::logic_error("ModelSession::apply: vertex-frame models take Edit, not ShapeEdit");
-  auto next = std::make_shared<const AnyModel>(applyShapeEdit(model(), solved(), edit));
+  const State* base = &current_;
+  if (const auto* t = std::get_if<TransformCurve>(&edit); t && t->fromGroupStart)
+    if (const State* start = history_.groupStart(group)) base = start;
+  auto next = std::make_shared<const AnyModel>(applyShapeEdit(*base->model, *base->solved, edit));
   auto solvedNext = solveIfFixed(next);  // may throw: nothing changed yet
   change(std::move(next), std::move(solvedNext), group);
 }

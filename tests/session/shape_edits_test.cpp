@@ -106,6 +106,160 @@ TEST(ShapeEdits, FourierCurvesTurnWholeAndDerivativeCurvesTakeTheLinearPartOnly)
   EXPECT_EQ(serializeModel(s.model()), original);
 }
 
+TEST(ShapeEdits, ACurveDragFromTheGroupStartIsAbsoluteAndOneUndoStep) {
+  ModelSession s = open(docFile("tube.json"));
+  const std::string original = serializeModel(s.model());
+  const auto top = [&] {
+    return std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[2].curve);
+  };
+  // Three steps of one drag, each the whole offset so far: the last one counts alone.
+  for (const char* dx : {"0.1", "0.45", "0.3"})
+    edit(
+        s,
+        fmt::format(
+            R"({{"op":"transform-curve","curve":2,"translate":[{},0,0],"from":"group-start","group":"drag"}})",
+            dx));
+  EXPECT_EQ(top().a0, Vec3(0.3, 0, 1));  // 0 + 0.3 exactly: not the sum of the steps
+  EXPECT_EQ(top().a[0], Vec3(0.5, 0, 0));
+  EXPECT_EQ(s.undoDepth(), 1u);
+  // A turn by 90 degrees about z through a0, from the same start: the coefficient vectors
+  // turn (a1 = (0.5, 0, 0) -> (0, 0.5, 0), b1 = (0, 0.5, 0) -> (-0.5, 0, 0)), a0 stays.
+  edit(
+      s,
+      R"({"op":"transform-curve","curve":2,"rotate":{"axis":[0,0,1],"degrees":90},"center":[0,0,1],"from":"group-start","group":"drag"})");
+  EXPECT_LT((top().a0 - Vec3(0, 0, 1)).norm(), 1e-15);
+  EXPECT_LT((top().a[0] - Vec3(0, 0.5, 0)).norm(), 1e-15);
+  EXPECT_LT((top().b[0] - Vec3(-0.5, 0, 0)).norm(), 1e-15);
+  // After the group ends, a step of a new group starts from the model as it is now.
+  s.endGroup();
+  edit(
+      s,
+      R"({"op":"transform-curve","curve":2,"translate":[0,0,0.5],"from":"group-start","group":"next"})");
+  EXPECT_LT((top().a0 - Vec3(0, 0, 1.5)).norm(), 1e-15);
+  EXPECT_LT((top().a[0] - Vec3(0, 0.5, 0)).norm(), 1e-15);
+  EXPECT_EQ(s.undoDepth(), 2u);
+  ASSERT_TRUE(s.undo());
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(serializeModel(s.model()), original);
+  // The same on a blend's B-spline curve (its corners stay shared with the other curves).
+  ModelSession blend = open(testing::example("bspline-blend.json"));
+  const auto uMin = [&] { return std::get<BSplinePdeModel>(blend.model()).curves[0].points; };
+  const auto before = uMin();
+  for (const char* dz : {"0.2", "0.1"})
+    edit(
+        blend,
+        fmt::format(
+            R"({{"op":"transform-curve","curve":"uMin","translate":[0,0,{}],"from":"group-start","group":"g"}})",
+            dz));
+  for (std::size_t k = 0; k < before.size(); ++k) EXPECT_EQ(uMin()[k], before[k] + Vec3(0, 0, 0.1));
+  EXPECT_EQ(std::get<BSplinePdeModel>(blend.model()).curves[2].points.front(), uMin().front());
+}
+
+TEST(ShapeEdits, CurveTransformsAreRefusedWithThePathOfWhatIsWrong) {
+  ModelSession s = open(docFile("tube.json"));
+  std::string path;
+  // Curves that are not there.
+  EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":4,"translate":[1,0,0]})", &path)
+                .find("condition 4 is out of range"),
+            std::string::npos);
+  EXPECT_EQ(path, "$.curve");
+  EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":-1,"translate":[1,0,0]})", &path), "");
+  EXPECT_EQ(path, "$.curve");
+  EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":"uMin","translate":[1,0,0]})", &path)
+                .find("numbered"),
+            std::string::npos);
+  EXPECT_EQ(path, "$.curve");
+  // Numbers that are not finite, or no transform at all.
+  EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":0,"translate":[1,1e999,0]})", &path)
+                .find("not finite"),
+            std::string::npos);
+  EXPECT_EQ(path, "$.translate[1]");
+  EXPECT_NE(
+      refusal(s, R"({"op":"transform-curve","curve":0,"scale":-1e999})", &path).find("not finite"),
+      std::string::npos);
+  EXPECT_EQ(path, "$.scale");
+  EXPECT_NE(
+      refusal(s, R"({"op":"transform-curve","curve":0,"rotate":{"axis":[0,0,0],"degrees":90}})",
+              &path),
+      "");
+  EXPECT_EQ(path.rfind("$.rotate", 0), 0u) << path;
+  EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":0,"translate":[1,0]})", &path), "");
+  EXPECT_EQ(path.rfind("$.translate", 0), 0u) << path;
+  // "from" names a group's start: it needs the group, and knows no other start.
+  EXPECT_NE(
+      refusal(s, R"({"op":"transform-curve","curve":0,"translate":[1,0,0],"from":"group-start"})",
+              &path)
+          .find("needs the edit's \"group\""),
+      std::string::npos);
+  EXPECT_EQ(path, "$.from");
+  EXPECT_NE(
+      refusal(
+          s, R"({"op":"transform-curve","curve":0,"translate":[1,0,0],"from":"start","group":"g"})",
+          &path)
+          .find("unknown value \"start\""),
+      std::string::npos);
+  EXPECT_EQ(path, "$.from");
+  EXPECT_NE(refusal(s, R"({"op":"transform-curve","curve":0,"translate":[1,0,0],"by":2})", &path)
+                .find("unknown field \"by\""),
+            std::string::npos);
+  // A B-spline PDE model's curves are named, and only its form's names.
+  ModelSession dome = open(testing::example("bspline-dome.json"));
+  EXPECT_NE(refusal(dome, R"({"op":"transform-curve","curve":"start","scale":2})", &path)
+                .find("no curve \"start\""),
+            std::string::npos);
+  EXPECT_EQ(path, "$.curve");
+}
+
+TEST(ShapeEdits, AFourierCurvesCoefficientsAreSetAndTheSurfaceLeavesAlongThem) {
+  ModelSession s = open(docFile("tube.json"));
+  const std::string original = serializeModel(s.model());
+  // The tube leaves its bottom circle straight up, x_u(0, v) = (0, 0, 2): tilted toward x.
+  edit(s, R"({"op":"set-fourier","curve":1,"a0":[0.5,0,2],"group":"drag"})");
+  edit(s, R"({"op":"set-fourier","curve":1,"a0":[0.75,0,2],"group":"drag"})");
+  const auto& d = std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[1].curve);
+  EXPECT_EQ(d.a0, Vec3(0.75, 0, 2));
+  EXPECT_TRUE(d.a.empty());
+  for (double v : {0.0, 1.0, 2.5})
+    EXPECT_LT((patchOf(s).derivative(0.0, v, 1, 0) - d.evaluate(v)).norm(), kThrough);
+  EXPECT_EQ(s.undoDepth(), 1u);  // one drag
+  // The lists replace the curve's whole.
+  edit(s, R"({"op":"set-fourier","curve":2,"a":[[0.25,0,0],[0,0,0.1]],"b":[[0,0.25,0]]})");
+  const auto& top = std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[2].curve);
+  EXPECT_EQ(top.a.size(), 2u);
+  EXPECT_EQ(top.a[1], Vec3(0, 0, 0.1));
+  EXPECT_EQ(top.b, (std::vector<Vec3>{Vec3(0, 0.25, 0), Vec3::Zero()}));  // as the file pads
+  EXPECT_EQ(top.a0, Vec3(0, 0, 1));
+  std::string path;
+  EXPECT_NE(refusal(s, R"({"op":"set-fourier","curve":1})", &path).find("needs"),
+            std::string::npos);
+  EXPECT_EQ(path, "$");
+  EXPECT_NE(
+      refusal(s, R"({"op":"set-fourier","curve":7,"a0":[0,0,0]})", &path).find("out of range"),
+      std::string::npos);
+  EXPECT_EQ(path, "$.curve");
+  EXPECT_NE(
+      refusal(s, R"({"op":"set-fourier","curve":1,"a0":[0,1e999,0]})", &path).find("not finite"),
+      std::string::npos);
+  EXPECT_EQ(path, "$.a0[1]");
+  EXPECT_NE(refusal(s, R"({"op":"set-fourier","curve":1,"a":[[0,0,0],[1,2]]})", &path), "");
+  EXPECT_EQ(path.rfind("$.a[1]", 0), 0u) << path;
+  EXPECT_NE(refusal(s, R"({"op":"set-fourier","curve":1,"a0":[0,0,0],"v":[1]})", &path)
+                .find("unknown field \"v\""),
+            std::string::npos);
+  ASSERT_TRUE(s.undo());
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(serializeModel(s.model()), original);
+  // A curve of points has no coefficients to set.
+  ModelSession shell = open(testing::example("shell.json"));
+  EXPECT_NE(refusal(shell, R"({"op":"set-fourier","curve":0,"a0":[0,0,0]})", &path)
+                .find("not given by Fourier coefficients"),
+            std::string::npos);
+  EXPECT_EQ(path, "$.curve");
+  ModelSession dome = open(testing::example("bspline-dome.json"));
+  EXPECT_NE(refusal(dome, R"({"op":"set-fourier","curve":"uMin","a0":[0,0,0]})", &path), "");
+  EXPECT_EQ(path, "$.curve");
+}
+
 TEST(ShapeEdits, OperatorChangesSolveOrAreRefusedWithTheReason) {
   ModelSession s = open(docFile("tube.json"));
   edit(s, R"({"op":"set-operator","a":3,"modes":2})");

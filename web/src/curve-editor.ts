@@ -1,23 +1,29 @@
 // The shape editor of spectral, cross-section and B-spline PDE models: handles in the frame
-// view for the points of their curves, the given control points of a net and a spectral
-// model's spine points; a drag is one undo group of absolute edits (the surface previewed
-// as vertex drags are); the panel's curve transforms, sections and operator. Every change is
-// a server edit (shape.ts makes them), so it is checked, undoable, journalled and saved.
+// view for the points of their curves, the tips of their tangents, the given control points
+// of a net and a spectral model's spine points, and a centre mark per curve (click: choose
+// the curve; drag: move the whole curve, Fourier curves too; the move gizmo (G) on the chosen
+// curve's centre); a drag is one undo group of absolute edits (the surface previewed as
+// vertex drags are); the panel's curve transforms (Shift+R, Shift+S), sections and operator.
+// Every change is a server edit (shape.ts makes them), so it is checked, undoable,
+// journalled and saved.
 import * as THREE from 'three';
 import type { Edit, Vec3 } from './api';
 import { $, readNumber } from './dom';
 import type { NumberRule } from './input';
-import { curveEntries, dragEdit, operatorOf, shapeHandles } from './shape';
-import type { Handle, ShapeEdit, SpineEdit } from './shape';
+import { gizmoSubjects } from './gizmo';
+import { curveEntries, curveMoveEdit, dragEdit, operatorOf, shapeHandles } from './shape';
+import type { CurveEntry, CurveRef, Handle, ShapeEdit, SpineEdit } from './shape';
 import type { Studio } from './studio';
 
 /** Presses that move less than this many pixels are clicks. */
 const CLICK_PIXELS = 5;
 /** A handle is under the pointer within this many pixels of its centre. */
 const PICK_PIXELS = 10;
-/** Handle diameters in CSS pixels: curve points, control points, spine points. */
+/** Handle diameters in CSS pixels: curve points, control points, spine points, tangent tips. */
 const HANDLE_PIXELS = 7;
-const COLOURS = { curve: 0x3d5a80, control: 0x2e7d32, spine: 0xee6c4d, picked: 0xffb300 };
+/** The curves' centre marks: larger than the points, so a curve is grabbed whole there. */
+const CENTRE_PIXELS = 12;
+const COLOURS = { curve: 0x3d5a80, control: 0x2e7d32, spine: 0xee6c4d, tangent: 0x6a994e, picked: 0xffb300, centre: 0x7b2cbf };
 
 type Json = Record<string, any>; // eslint-disable-line @typescript-eslint/no-explicit-any
 
@@ -37,10 +43,30 @@ export function mountCurveEditor(studio: Studio): void {
   points.frustumCulled = false;
   points.renderOrder = 4;
   frameView.scene.add(points);
+  // The centre of every curve that holds positions (not vectors): drawn over the lines.
+  const centreMarks = new THREE.Points(
+    new THREE.BufferGeometry(),
+    new THREE.PointsMaterial({ size: CENTRE_PIXELS, sizeAttenuation: false, vertexColors: true, depthTest: false }),
+  );
+  centreMarks.frustumCulled = false;
+  centreMarks.renderOrder = 5;
+  frameView.scene.add(centreMarks);
+  // A tangent: a line from its base point to its tip handle.
+  const tangentLines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: COLOURS.tangent }));
+  tangentLines.frustumCulled = false;
+  frameView.scene.add(tangentLines);
 
   let handles: Handle[] = [];
+  let centres: CurveEntry[] = [];
   let picked: Handle | null = null;
-  let drag: { handle: Handle; index: number; pointer: number; spine: SpineEdit[]; moved: boolean; x: number; y: number } | null = null;
+  /** Whether the chosen curve was taken whole (its centre mark clicked): the panel says so. */
+  let whole = false;
+  /** A drag: of a handle (`index` in handles), or of a curve's centre mark (`curve`: the
+   * curve's point handles and centre follow by the same offset). */
+  let drag:
+    | { handle: Handle; index: number; pointer: number; spine: SpineEdit[]; moved: boolean; x: number; y: number; curve?: undefined }
+    | { curve: CurveMove; pointer: number; moved: boolean; x: number; y: number }
+    | null = null;
 
   const shape = (): Json | null => {
     const s = store.state;
@@ -49,13 +75,36 @@ export function mountCurveEditor(studio: Studio): void {
 
   const sameRef = (a: Handle, b: Handle) =>
     a.kind === b.kind &&
-    (a.kind === 'curve' ? b.kind === 'curve' && a.curve === b.curve && a.point === b.point
+    (a.kind === 'curve' || a.kind === 'tangent' ? (b.kind === 'curve' || b.kind === 'tangent') && a.curve === b.curve && a.point === b.point
       : a.kind === 'control' ? b.kind === 'control' && a.i === b.i && a.j === b.j
       : b.kind === 'spine' && a.index === b.index);
 
+  /** The curve chosen in the panel's list (null: none, or no curves). */
+  const chosen = (): CurveEntry | null => {
+    const model = shape();
+    const value = $<HTMLSelectElement>('curve-select').value;
+    return (model && curveEntries(model).find((e) => String(e.ref) === value)) || null;
+  };
+
   function draw(): void {
     const model = shape();
+    centres = model ? curveEntries(model).filter((e) => !e.vectors) : [];
+    const choice = chosen();
+    const cxyz = new Float32Array(3 * centres.length);
+    const crgb = new Float32Array(3 * centres.length);
+    const cc = new THREE.Color();
+    centres.forEach((e, i) => {
+      cxyz.set(e.centre, 3 * i);
+      cc.setHex(choice && choice.ref === e.ref ? COLOURS.picked : COLOURS.centre);
+      crgb.set([cc.r, cc.g, cc.b], 3 * i);
+    });
+    centreMarks.geometry.setAttribute('position', new THREE.BufferAttribute(cxyz, 3));
+    centreMarks.geometry.setAttribute('color', new THREE.BufferAttribute(crgb, 3));
+    centreMarks.visible = centres.length > 0;
     handles = model ? shapeHandles(model, store.state.view) : [];
+    const tangents = handles.filter((h) => h.kind === 'tangent');
+    tangentLines.geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(tangents.flatMap((h) => [...h.base, ...h.p])), 3));
+    tangentLines.visible = tangents.length > 0;
     const xyz = new Float32Array(3 * handles.length);
     const rgb = new Float32Array(3 * handles.length);
     const c = new THREE.Color();
@@ -74,25 +123,71 @@ export function mountCurveEditor(studio: Studio): void {
     const a = points.geometry.getAttribute('position') as THREE.BufferAttribute;
     a.setXYZ(index, p[0], p[1], p[2]);
     a.needsUpdate = true;
+    const h = handles[index];
+    if (h?.kind === 'tangent') {
+      // Its line's tip: the tangents' lines are in handle order.
+      const k = handles.slice(0, index).filter((x) => x.kind === 'tangent').length;
+      const l = tangentLines.geometry.getAttribute('position') as THREE.BufferAttribute;
+      l.setXYZ(2 * k + 1, p[0], p[1], p[2]);
+      l.needsUpdate = true;
+    }
     frameView.invalidate();
   }
 
-  /** The handle nearest a client point (within PICK_PIXELS), front-most first. */
-  function handleAt(x: number, y: number): number | null {
-    let best: number | null = null;
+  /** The handle nearest a client point (within PICK_PIXELS), front-most first: an index in
+   * `handles`, or { centre } for a curve's centre mark. */
+  function handleAt(x: number, y: number): number | { centre: number } | null {
+    let best: number | { centre: number } | null = null;
     let score = Infinity;
-    handles.forEach((h, i) => {
-      const s = frameView.toClient(new THREE.Vector3(...h.p));
+    const consider = (p: Vec3, what: number | { centre: number }, bias = 0) => {
+      const s = frameView.toClient(new THREE.Vector3(...p));
       const d = Math.hypot(s.x - x, s.y - y);
       if (!s.visible || d > PICK_PIXELS) return;
-      if (d + s.z * 1e-3 < score) (score = d + s.z * 1e-3), (best = i);
-    });
+      if (d + s.z * 1e-3 - bias < score) (score = d + s.z * 1e-3 - bias), (best = what);
+    };
+    handles.forEach((h, i) => consider(h.p, i));
+    // A centre mark is drawn over everything (and larger): on a point it covers, it wins.
+    centres.forEach((e, centre) => consider(e.centre, { centre }, CENTRE_PIXELS / 4));
     return best;
   }
 
+  /** A whole curve being moved (a centre drag or the gizmo): its point handles and centre
+   * mark where they started; each step puts them `d` away and sends the curve `d` from the
+   * drag's start (one absolute edit). */
+  interface CurveMove {
+    ref: CurveRef;
+    centre: Vec3;
+    mark: number;
+    moved: { index: number; from: Vec3 }[];
+  }
+  function beginCurveMove(entry: CurveEntry): CurveMove {
+    studio.beginGesture('curve-move');
+    const moved = handles.flatMap((h, index) => (h.kind === 'curve' && h.curve === entry.ref ? [{ index, from: h.p }] : []));
+    return { ref: entry.ref, centre: entry.centre, mark: centres.findIndex((e) => e.ref === entry.ref), moved };
+  }
+  function stepCurveMove(m: CurveMove, d: Vec3): void {
+    const at = (p: Vec3) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]] as Vec3;
+    for (const { index, from } of m.moved) moveHandle(index, at(from));
+    if (m.mark >= 0) {
+      const a = centreMarks.geometry.getAttribute('position') as THREE.BufferAttribute;
+      a.setXYZ(m.mark, ...at(m.centre));
+      a.needsUpdate = true;
+    }
+    frameView.invalidate();
+    pump.push(() => send(curveMoveEdit(m.ref, d)));
+  }
+  async function endCurveMove(): Promise<void> {
+    await studio.endGesture();
+    await studio.reloadModel(); // the curve, its centre and handles as the server has them
+  }
+
   function describe(h: Handle | null): string {
-    if (!h) return 'none';
+    if (!h) {
+      const entry = whole ? chosen() : null;
+      return entry ? `${entry.label}, whole` : 'none';
+    }
     if (h.kind === 'curve') return `${typeof h.curve === 'number' ? `curve ${h.curve}` : h.curve}, point ${h.point}`;
+    if (h.kind === 'tangent') return `${typeof h.curve === 'number' ? `curve ${h.curve}` : h.curve}, ${h.mean ? 'mean tangent (a0)' : `tangent ${h.point}`}`;
     if (h.kind === 'control') return `P[${h.i}][${h.j}]`;
     return `spine point ${h.index} (u = ${store.state.view?.spineHandles?.u[h.index]})`;
   }
@@ -100,12 +195,22 @@ export function mountCurveEditor(studio: Studio): void {
   /** Marks handle `h` (null: none); `choose`: its curve becomes the panel's (a click on it). */
   function pick(h: Handle | null, choose = false): void {
     picked = h;
+    if (h) whole = false;
     $('shape-handle').textContent = describe(h);
-    if (choose && h?.kind === 'curve') $<HTMLSelectElement>('curve-select').value = String(h.curve);
+    if (choose && (h?.kind === 'curve' || h?.kind === 'tangent')) chooseCurve(h.curve);
     draw();
   }
+  /** Makes `ref` the panel's curve (the one the keys, the gizmo and the buttons act on). */
+  function chooseCurve(ref: CurveRef): void {
+    $<HTMLSelectElement>('curve-select').value = String(ref);
+    gizmoSubjects.changed?.();
+  }
   // A curve chosen in the list: the handle picked before is no longer the subject.
-  $('curve-select').addEventListener('change', () => pick(null));
+  $('curve-select').addEventListener('change', () => {
+    whole = false;
+    pick(null);
+    gizmoSubjects.changed?.();
+  });
 
   // ------------------------------------------------------------------ dragging handles
   canvas.addEventListener('pointerdown', (ev) => {
@@ -113,6 +218,18 @@ export function mountCurveEditor(studio: Studio): void {
     const index = handleAt(ev.clientX, ev.clientY);
     if (index === null) return;
     frameView.controls.enabled = false; // this listener runs before the controls'
+    if (typeof index === 'object') {
+      // A centre mark: the curve is chosen; a drag moves it whole.
+      const entry = centres[index.centre];
+      chooseCurve(entry.ref);
+      whole = true;
+      pick(null);
+      drag = { curve: { ref: entry.ref, centre: entry.centre, mark: index.centre, moved: [] }, pointer: ev.pointerId, moved: false, x: ev.clientX, y: ev.clientY };
+      canvas.setPointerCapture(ev.pointerId);
+      ev.preventDefault();
+      ev.stopImmediatePropagation();
+      return;
+    }
     const handle = handles[index];
     drag = { handle, index, pointer: ev.pointerId, spine: structuredClone(shape()!.spine ?? []), moved: false, x: ev.clientX, y: ev.clientY };
     canvas.setPointerCapture(ev.pointerId);
@@ -132,7 +249,18 @@ export function mountCurveEditor(studio: Studio): void {
     if (!drag.moved) {
       if (Math.hypot(ev.clientX - drag.x, ev.clientY - drag.y) < CLICK_PIXELS) return;
       drag.moved = true;
-      studio.beginGesture('shape-drag');
+      if (drag.curve) {
+        const entry = centres[drag.curve.mark];
+        drag.curve = beginCurveMove(entry);
+      } else {
+        studio.beginGesture('shape-drag');
+      }
+    }
+    if (drag.curve) {
+      const m = drag.curve;
+      const target = frameView.dragTarget(m.centre, ev.clientX, ev.clientY);
+      if (target) stepCurveMove(m, [target[0] - m.centre[0], target[1] - m.centre[1], target[2] - m.centre[2]]);
+      return;
     }
     const { handle, index, spine } = drag;
     const target = frameView.dragTarget(handle.p, ev.clientX, ev.clientY);
@@ -144,10 +272,11 @@ export function mountCurveEditor(studio: Studio): void {
 
   async function endDrag(ev: PointerEvent): Promise<void> {
     if (!drag || ev.pointerId !== drag.pointer) return;
-    const moved = drag.moved;
+    const { moved, curve } = drag;
     drag = null;
     frameView.controls.enabled = true;
     if (!moved) return;
+    if (curve) return endCurveMove();
     await studio.endGesture();
     await studio.reloadModel(); // the curves, spine and handles as the server now has them
   }
@@ -173,11 +302,30 @@ export function mountCurveEditor(studio: Studio): void {
   }
 
   const chosenCurve = () => {
-    const model = shape();
-    const value = $<HTMLSelectElement>('curve-select').value;
-    const entry = model ? curveEntries(model).find((e) => String(e.ref) === value) : undefined;
-    if (!entry) throw new Error('Curve: choose a curve first');
+    const entry = chosen();
+    if (!entry) throw new Error('Curve: choose a curve first (click its centre mark, or pick it in the list)');
     return entry;
+  };
+  // The move gizmo (G) on the chosen curve's centre; a curve of vectors has none (a
+  // translation leaves vectors as they are).
+  let gizmoMove: CurveMove | null = null;
+  gizmoSubjects.shape = {
+    centre: () => {
+      const entry = shape() ? chosen() : null;
+      return entry && !entry.vectors ? entry.centre : null;
+    },
+    begin: () => {
+      const entry = chosen();
+      if (entry) gizmoMove = beginCurveMove(entry);
+    },
+    move: (d) => {
+      if (gizmoMove) stepCurveMove(gizmoMove, d);
+    },
+    end: async () => {
+      if (!gizmoMove) return;
+      gizmoMove = null;
+      await endCurveMove();
+    },
   };
 
   $('curve-move').addEventListener('click', () =>
@@ -268,6 +416,7 @@ export function mountCurveEditor(studio: Studio): void {
     if (picked && !shapeHandles(shape() ?? {}, store.state.view).some((h) => sameRef(h, picked!))) picked = null;
     fillPanel();
     pick(picked);
+    gizmoSubjects.changed?.();
   });
 
   if (navigator.webdriver || new URLSearchParams(location.search).has('test'))
@@ -277,6 +426,12 @@ export function mountCurveEditor(studio: Studio): void {
         handles.map((h) => {
           const s = frameView.toClient(new THREE.Vector3(...h.p));
           return { ...h, x: s.x, y: s.y, visible: s.visible };
+        }),
+      /** The client point of every curve's centre mark, with its curve. */
+      centres: () =>
+        centres.map((e) => {
+          const s = frameView.toClient(new THREE.Vector3(...e.centre));
+          return { curve: e.ref, p: e.centre, x: s.x, y: s.y, visible: s.visible };
         }),
     };
 }

@@ -1,6 +1,7 @@
 // The move gizmo (G): three arrows (and three planes) on the centre of the vertex selection
-// in the frame view; dragging one moves the selection along that axis (or in that plane),
-// one undo step per drag, as a dragged handle does. three.js's TransformControls draws and
+// in the frame view (of a spectral, cross-section or B-spline PDE model: on the chosen
+// curve's centre, curve-editor.ts); dragging one moves the selection (the curve) along that
+// axis (or in that plane), one undo step per drag, as a dragged handle does. three.js's TransformControls draws and
 // solves it; its pointer events are fed from here, ahead of the handles' drag tool and the
 // orbit controls (a press on the gizmo reaches neither).
 import * as THREE from 'three';
@@ -12,6 +13,19 @@ import type { Studio } from './studio';
 
 /** The gizmo's size (TransformControls' unit: about 1/4 of the view's height per 1). */
 const GIZMO_SIZE = 0.9;
+
+/** What the gizmo moves: where it sits (null: hidden) and a drag's steps (`d`: the offset
+ * from the drag's start). */
+export interface GizmoSubject {
+  centre(): Vec3 | null;
+  begin(): void;
+  move(d: Vec3): void;
+  end(): Promise<void>;
+}
+
+/** The subject of models without vertices (set by curve-editor.ts), and `changed`: call it
+ * when that subject's centre moved or another curve was chosen (set by the gizmo). */
+export const gizmoSubjects: { shape?: GizmoSubject; changed?: () => void } = {};
 
 export interface Gizmo {
   toggle(): void;
@@ -45,21 +59,51 @@ export function mountGizmo(studio: Studio): Gizmo {
   let on = false;
   const toggleBox = document.querySelector<HTMLInputElement>('[data-testid="gizmo"]');
 
-  /** A drag: the vertices it moves and where they started. */
-  let drag: { moved: number[]; from: Vec3[]; start: THREE.Vector3 } | null = null;
+  /** A drag of the vertex selection: the vertices it moves and where they started. */
+  let drag: { moved: number[]; from: Vec3[] } | null = null;
+
+  /** The vertex selection as the gizmo's subject. */
+  const vertexSubject: GizmoSubject = {
+    centre: () => {
+      const model = store.state.model;
+      const vertices = model ? selectionVertices(studio) : [];
+      return vertices.length ? boxCentre(vertices.map((v) => model!.vertices[v])) : null;
+    },
+    begin: () => {
+      const model = store.state.model!;
+      const moved = selectionVertices(studio);
+      drag = { moved, from: moved.map((v) => [...model.vertices[v]] as Vec3) };
+      studio.beginGesture('gizmo');
+    },
+    move: (d) => {
+      if (!drag || !store.state.model) return;
+      const { moved, from } = drag;
+      offsetVertices(studio, moved, from, d, []);
+      const positions = moved.map((v) => [...store.state.model!.vertices[v]] as Vec3);
+      pump.push(() => ({ op: 'move-vertices', vertices: moved, positions }));
+    },
+    end: async () => {
+      drag = null;
+      await studio.endGesture();
+      store.update(['model'], () => {});
+    },
+  };
+  const subject = (): GizmoSubject | null => (store.state.model ? vertexSubject : store.state.shape ? (gizmoSubjects.shape ?? null) : null);
+  /** Where the drag in progress started (null: none). */
+  let dragStart: THREE.Vector3 | null = null;
 
   const place = () => {
-    const model = store.state.model;
-    const vertices = model ? selectionVertices(studio) : [];
+    const centre = subject()?.centre() ?? null;
     const wasVisible = helper.visible;
-    helper.visible = on && vertices.length > 0;
+    helper.visible = on && centre !== null;
     controls.enabled = helper.visible;
-    if (vertices.length && !drag) proxy.position.set(...boxCentre(vertices.map((v) => model!.vertices[v])));
+    if (centre && !dragStart) proxy.position.set(...centre);
     // Only a shown gizmo (or one shown or hidden now) needs the frame view drawn whole: a
     // hidden one must not turn a vertex drag's region redraw (scene.ts) into whole draws.
     if (helper.visible || wasVisible) frameView.invalidate();
   };
   store.subscribe(['model', 'selection', 'vertex'], place);
+  gizmoSubjects.changed = place;
   const toggle = () => {
     on = !on;
     if (toggleBox) toggleBox.checked = on;
@@ -70,23 +114,24 @@ export function mountGizmo(studio: Studio): Gizmo {
   });
 
   controls.addEventListener('change', () => frameView.invalidate());
+  // The subject of a drag is kept from its press to its release.
+  let dragging: GizmoSubject | null = null;
   controls.addEventListener('mouseDown', () => {
-    const model = store.state.model!;
-    const moved = selectionVertices(studio);
-    drag = { moved, from: moved.map((v) => [...model.vertices[v]] as Vec3), start: proxy.position.clone() };
-    studio.beginGesture('gizmo');
+    dragging = subject();
+    if (!dragging) return;
+    dragStart = proxy.position.clone();
+    dragging.begin();
   });
   controls.addEventListener('objectChange', () => {
-    if (!drag || !store.state.model) return;
-    const { moved, from } = drag;
-    const d = proxy.position.clone().sub(drag.start);
-    offsetVertices(studio, moved, from, [d.x, d.y, d.z], []);
-    const positions = moved.map((v) => [...store.state.model!.vertices[v]] as Vec3);
-    pump.push(() => ({ op: 'move-vertices', vertices: moved, positions }));
+    if (!dragging || !dragStart) return;
+    const d = proxy.position.clone().sub(dragStart);
+    dragging.move([d.x, d.y, d.z]);
   });
   controls.addEventListener('mouseUp', () => {
-    drag = null;
-    void studio.endGesture().then(() => store.update(['model'], () => {}));
+    const was = dragging;
+    dragging = null;
+    dragStart = null;
+    if (was) void was.end().then(place);
   });
 
   // The pointer, fed to the controls in the capture phase of the view's container (before

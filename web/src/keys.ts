@@ -26,6 +26,9 @@ function typing(target: EventTarget | null): boolean {
 export function mountKeys(studio: Studio, views: ViewActions, modeller?: ModellerActions): void {
   const { store } = studio;
   const click = (id: string) => () => $<HTMLButtonElement>(id).click();
+  /** Whether the open model is a spectral, cross-section or B-spline PDE one (its curves are
+   * what the transform keys act on: curve-editor.ts). */
+  const shapeModel = () => !!store.state.shape;
   const toggle = (id: string) => () => {
     const box = $<HTMLInputElement>(id);
     box.checked = !box.checked;
@@ -85,9 +88,9 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
       { keys: 'S', what: 'Split the selected frame in 4', matches: (e) => plain('s')(e) && !e.shiftKey, run: () => modeller.split('4') },
       { keys: 'W', what: 'Weld 2 selected vertices, or 2 selected boundary edges', matches: plain('w'), run: () => modeller.weld() },
       { keys: 'R', what: "Flip the selected frames' u direction", matches: (e) => plain('r')(e) && !e.shiftKey, run: () => modeller.flip() },
-      { keys: 'G', what: 'Move gizmo on the selection (on/off)', matches: plain('g'), run: () => modeller.toggleGizmo() },
-      { keys: 'Shift+S', what: "Scale the selection about its centre (the panel's factor)", matches: (e) => plain('s')(e) && e.shiftKey, run: () => modeller.scaleSelection() },
-      { keys: 'Shift+R', what: "Rotate the selection about its centre (the panel's axis and degrees)", matches: (e) => plain('r')(e) && e.shiftKey, run: () => modeller.rotateSelection() },
+      { keys: 'G', what: "Move gizmo on the selection, or on the chosen curve's centre (on/off)", matches: plain('g'), run: () => modeller.toggleGizmo() },
+      { keys: 'Shift+S', what: "Scale the selection, or the chosen curve, about its centre (the panel's factor)", matches: (e) => plain('s')(e) && e.shiftKey, run: () => (shapeModel() ? click('curve-scale')() : modeller.scaleSelection()) },
+      { keys: 'Shift+R', what: "Rotate the selection, or the chosen curve, about its centre (the panel's axis and degrees)", matches: (e) => plain('r')(e) && e.shiftKey, run: () => (shapeModel() ? click('curve-rotate')() : modeller.rotateSelection()) },
       { keys: 'D', what: 'Draw force: drag a rectangle on a patch (on/off)', matches: plain('d'), run: () => modeller.toggleDrawForce() },
     );
 

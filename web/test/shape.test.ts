@@ -3,13 +3,13 @@
 // spine list a spine drag makes.
 import { describe, expect, it } from 'vitest';
 import type { Vec3 } from '../src/api';
-import { curveEntries, dragEdit, operatorOf, shapeHandles, spineWith } from '../src/shape';
+import { TANGENT_DRAW, curveEntries, curveMoveEdit, dragEdit, operatorOf, shapeHandles, spineWith } from '../src/shape';
 
 const circle = (z: number, n = 5): Vec3[] =>
   Array.from({ length: n }, (_, j) => [Math.cos((2 * Math.PI * j) / n), Math.sin((2 * Math.PI * j) / n), z] as Vec3);
 
 describe('handles', () => {
-  it('are the points of position curves, never a derivative condition or a Fourier curve', () => {
+  it('are the points of position curves and the tips of tangents given as points, never a Fourier curve', () => {
     const model = {
       type: 'spectral',
       operator: 'ugail',
@@ -25,9 +25,52 @@ describe('handles', () => {
     const handles = shapeHandles(model, view);
     expect(handles.filter((h) => h.kind === 'curve').map((h) => h.kind === 'curve' && h.curve)).toEqual([0, 0, 0, 0, 0]);
     expect(handles.filter((h) => h.kind === 'spine')).toHaveLength(3);
-    // The Fourier curve is listed for whole-curve transforms, centred on its a0.
-    expect(curveEntries(model)[2].centre).toEqual([0, 0, 1]);
-    expect(curveEntries(model)[0].centre[2]).toBe(0);
+    // The derivative condition's vectors: tips drawn from the position curve at the same u
+    // (point j from point j), a drag sets the vector (tip - base) / TANGENT_DRAW.
+    const tips = handles.filter((h) => h.kind === 'tangent' && h.curve === 1);
+    expect(tips).toHaveLength(5);
+    const tip = tips[2];
+    if (tip.kind !== 'tangent') throw new Error('not a tangent');
+    expect(tip.base).toEqual(circle(0)[2]);
+    tip.p.forEach((x, c) => expect(x).toBeCloseTo(circle(0)[2][c] + TANGENT_DRAW * circle(1)[2][c], 15));
+    expect(dragEdit(tip, [tip.base[0], tip.base[1], tip.base[2] + 0.5], [], null)).toEqual({
+      op: 'move-curve-points',
+      curve: 1,
+      points: [2],
+      positions: [[0, 0, 0.5 / TANGENT_DRAW]],
+    });
+    // The Fourier curve is listed for whole-curve transforms, centred on its a0; the
+    // derivative conditions are vectors (no centre to move).
+    const entries = curveEntries(model);
+    expect(entries[2].centre).toEqual([0, 0, 1]);
+    expect(entries[0].centre[2]).toBe(0);
+    expect(entries.map((e) => e.vectors)).toEqual([false, true, false, true]);
+    // A derivative condition of points whose position curve is Fourier: no tips (nowhere to
+    // draw them from, point by point).
+    const fourierBase = { ...model, conditions: [model.conditions[2], { u: 1, derivative: 1, curve: { points: circle(1) } }] };
+    expect(shapeHandles(fourierBase, null).filter((h) => h.kind === 'tangent')).toHaveLength(0);
+    // A Fourier derivative condition: one tip, its a0 (the mean tangent) drawn from the
+    // position curve's a0; a drag sets a0.
+    const mean = handles.find((h) => h.kind === 'tangent' && h.curve === 3);
+    expect(mean).toEqual({ kind: 'tangent', curve: 3, point: 0, base: [0, 0, 1], p: [0, 0, 1 + TANGENT_DRAW * 2], mean: true });
+    expect(dragEdit(mean!, [1, 0, 1.5], [], null)).toEqual({ op: 'set-fourier', curve: 3, a0: [1 / TANGENT_DRAW, 0, 0.5 / TANGENT_DRAW] });
+  });
+
+  it('a whole curve moves by a translation from the drag\'s start (absolute steps)', () => {
+    expect(curveMoveEdit('uMin', [0, 0, 0.25])).toEqual({ op: 'transform-curve', curve: 'uMin', translate: [0, 0, 0.25], from: 'group-start' });
+  });
+
+  it('of a tangent row start on the side they leave, at their parameters', () => {
+    // uMin along y at chord-length t; the tangent row's samples at t = 0, 0.25, 1.
+    const uMin = { points: [[0, 0, 0], [0, 1, 0], [0, 4, 0]] };
+    const model = {
+      type: 'bspline-pde',
+      boundary: { uMin, uMax: { points: [[4, 0, 0], [4, 4, 0]] }, vMin: { points: [[0, 0, 0], [4, 0, 0]] }, vMax: { points: [[0, 4, 0], [4, 4, 0]] }, uMinSecond: { tangent: { points: [[1, 0, 0], [1, 0, 1], [1, 0, 2]], t: [0, 0.25, 1] } } },
+    };
+    const tips = shapeHandles(model, null).filter((h) => h.kind === 'tangent');
+    expect(tips.map((h) => h.kind === 'tangent' && h.base)).toEqual([[0, 0, 0], [0, 1, 0], [0, 4, 0]]);
+    expect(tips[1].p).toEqual([TANGENT_DRAW, 1, TANGENT_DRAW]);
+    expect(curveEntries(model).find((e) => e.ref === 'uMinSecond')?.vectors).toBe(true);
   });
 
   it('of a net are its given control points only', () => {
@@ -43,7 +86,7 @@ describe('handles', () => {
   it('of the boundary form and the blends are their curves by name', () => {
     const pts = circle(0, 4);
     const boundary = { type: 'bspline-pde', boundary: { uMin: { bspline: pts }, uMax: { points: pts }, vMin: { bspline: pts }, vMax: { bspline: pts }, uMinSecond: { points: pts }, vMinSecond: { tangent: { bspline: pts } } } };
-    expect(curveEntries(boundary).map((e) => e.ref)).toEqual(['uMin', 'uMax', 'vMin', 'vMax', 'uMinSecond']);
+    expect(curveEntries(boundary).map((e) => e.ref)).toEqual(['uMin', 'uMax', 'vMin', 'vMax', 'uMinSecond', 'vMinSecond']);
     const closed = { type: 'bspline-pde', 'closed-blend': { n: 5, start: { bspline: pts }, end: { bspline: pts } } };
     expect(curveEntries(closed).map((e) => e.ref)).toEqual(['start', 'end']);
   });
