@@ -41,6 +41,7 @@ struct Args {
   std::size_t samples = 30000;
   double budget = 300.0;  ///< CPU seconds of fitting per mesh before the sweep stops
   bool sections = false;
+  bool fitShape = false;  ///< fit a force, a1 and a2 per frame after the vertices (--fit-shape)
 };
 
 /// The model without vertices no frame uses (the grid layout's frame centres): the storage
@@ -157,7 +158,9 @@ int run(const Args& args) {
     Candidate c;
     c.layout = std::move(*layout);
     const double t0 = cpuMs();
-    const FitResult fit = fitVertexFrames(c.layout.model, truth);
+    FitOptions fitOptions;
+    fitOptions.fitShape = args.fitShape;
+    const FitResult fit = fitVertexFrames(c.layout.model, truth, fitOptions);
     c.fitMs = cpuMs() - t0;
     c.iterations = static_cast<std::uint32_t>(fit.iterations.size() - 1);
     c.fitted = withoutUnusedVertices(fit.model);
@@ -285,6 +288,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--budget", args.budget, "CPU seconds of fitting before the sweep stops")
       ->capture_default_str();
+  app.add_flag("--fit-shape", args.fitShape,
+               "fit a whole-frame force, a1 and a2 per frame after the vertices (as rebuild "
+               "--fit-shape: more storage a frame, a lower RMS)");
   app.add_flag("--sections", args.sections, "tube: also the cross-section model (8 modes)");
   app.add_option("--images", args.images, "write the 0.2 % model and its truth as OBJ here");
   CLI11_PARSE(app, argc, argv);

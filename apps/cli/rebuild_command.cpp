@@ -129,6 +129,9 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
   cmd->add_flag("--prevent-folds", preventFolds,
                 "vertex-frames: refuse steps that fold more of the surface over (fewer folds, "
                 "a higher RMS)");
+  cmd->add_flag("--fit-shape", fitShape,
+                "vertex-frames: after the vertices, fit a whole-frame force, a1 and a2 per frame "
+                "too (up to --iterations more iterations; more storage, a lower RMS)");
 }
 
 CLI::App* RebuildCommand::add(CLI::App& app) {
@@ -211,6 +214,9 @@ SliceOptions RebuildCommand::sliceOptions() const {
 }
 
 int RebuildCommand::runCrossSections() const {
+  if (vertexFrames.fitShape)
+    throw RebuildUsageError(
+        "--fit-shape fits the force, a1 and a2 of vertex frames: it needs --as vertex-frames");
   if (!std::isfinite(a) || a == 0.0)
     throw RebuildUsageError(fmt::format("--a {}: a must be finite and non-zero", a));
   if (points < 2 * modes + 1)
@@ -325,6 +331,10 @@ int RebuildCommand::runVertexFrames() const {
   if (!args.tube.empty() && args.tube[1] < 3)
     throw RebuildUsageError(
         "--tube: a tube needs at least 3 sectors round it (two would join along both sides)");
+  if (args.fitShape && args.iterations == 0)
+    throw RebuildUsageError(
+        "--fit-shape with --iterations 0 would fit nothing: the shape is fitted in up to "
+        "--iterations iterations after the vertices");
   const SliceOptions slice = sliceOptions();
 
   auto t0 = Clock::now();
@@ -350,7 +360,8 @@ int RebuildCommand::runVertexFrames() const {
   options.smoothness = args.smoothness;
   options.samplesPerSide = args.samples;
   options.preventFolds = args.preventFolds;
-  ProgressBar bar(args.iterations, !quiet);
+  options.fitShape = args.fitShape;
+  ProgressBar bar(args.fitShape ? 2 * args.iterations : args.iterations, !quiet);
   options.onIteration = [&](const FitIteration& it) {
     bar.update(it.iteration, it.measure.rms());
     if (quiet) return;
@@ -358,7 +369,10 @@ int RebuildCommand::runVertexFrames() const {
     fmt::print(
         "iteration {:>3}{}: RMS {}  surface -> mesh RMS {} mean {} max {}  mesh -> surface RMS "
         "{} mean {} max {}  folded {}/{}\n",
-        it.iteration, it.iteration == 0 ? " (layout)" : fmt::format(" (step {:g})", it.step),
+        it.iteration,
+        it.iteration == 0 ? " (layout)"
+        : it.shape ? fmt::format(" (shape: step {:g}, a1 a2 step {:g})", it.step, it.parameterStep)
+                   : fmt::format(" (step {:g})", it.step),
         percent(m.rms()), percent(m.rmsToMesh), percent(m.meanToMesh), percent(m.maxToMesh),
         percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel), m.foldedSamples,
         m.samples);

@@ -23,6 +23,7 @@ struct VertexFrameRebuildArgs {
   double smoothness = 1e-5;
   std::uint32_t samples = 9;  ///< surface samples per patch side (0: automatic)
   bool preventFolds = false;  ///< refuse steps that fold more of the surface over
+  bool fitShape = false;      ///< then fit a force, a1 and a2 per frame too
 
   void add(CLI::App* cmd);
 };

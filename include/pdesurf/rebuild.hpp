@@ -72,7 +72,12 @@ struct FitMeasure {
 struct FitIteration {
   std::uint32_t iteration = 0;  ///< 0: the start
   FitMeasure measure;
-  double step = 0.0;  ///< the fraction of the least-squares step taken (1: all of it)
+  double step = 0.0;  ///< the fraction of the least-squares step taken (1: all of it; 0: none)
+  /// An iteration of the shape fit (FitOptions::fitShape): the least squares moved the
+  /// forces with the vertices, and `parameterStep` is the fraction of the a1, a2 step taken
+  /// (0: no fraction of it lowered the RMS).
+  bool shape = false;
+  double parameterStep = 0.0;
 };
 
 struct FitOptions {
@@ -102,9 +107,24 @@ struct FitOptions {
   /// vertices of the frames that fold more stay and the rest of the step is tried again.
   /// Off by default: it costs RMS (docs/rebuild.md, Limits).
   bool preventFolds = false;
+  /// After the vertex fit stops, fits the shape too, for up to maxIterations more
+  /// iterations: a whole-frame sculpting force per frame (its f0 joins the vertices in the
+  /// least squares: with a1, a2 fixed it only adds f0-proportional sin(πu) sin(πv) to the
+  /// patch, 0 on its border, so C0 holds) and a1, a2 per frame (positive, in
+  /// [kMinShapeParameter, kMaxShapeParameter]: a damped Gauss–Newton step in their
+  /// logarithms on the same closest-point pairs, taken whole or halved only where it lowers
+  /// the RMS). The start model may have no forces, and its a1, a2 must be in that range.
+  /// docs/rebuild.md, "Fitting the shape".
+  bool fitShape = false;
   /// Called with the start and after every accepted iteration (progress reports).
   std::function<void(const FitIteration&)> onIteration;
 };
+
+/// The range --fit-shape keeps every a1 and a2 in (per component): positive, so every
+/// force has a solution (a1 + a2 > 0) and the PDE stays elliptic; three decades either side
+/// of the default 1, so that six significant digits keep them meaningful.
+inline constexpr double kMinShapeParameter = 1e-3;
+inline constexpr double kMaxShapeParameter = 1e3;
 
 struct FitResult {
   VertexFrameModel model;
@@ -116,7 +136,9 @@ struct FitResult {
 /// iteration pairs surface samples with their closest points on the mesh and mesh vertices
 /// with their closest points on the surface, solves the linear least-squares problem in
 /// the vertex positions (with the strips' cubic coefficients as the global solver sets
-/// them), and takes the step, halved until the measured RMS does not increase.
+/// them), and takes the step, halved until the measured RMS does not increase. With
+/// FitOptions::fitShape, then the forces and a1, a2 as well. Throws std::invalid_argument
+/// for a start model fitShape cannot take (forces already, a1 or a2 out of range).
 FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
                           const FitOptions& options = {});
 

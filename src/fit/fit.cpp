@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -18,6 +19,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "fit/linear_surface.hpp"
+#include "numerics/force_shape.hpp"
 #include "numerics/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
 
@@ -190,6 +192,26 @@ constexpr double kFoldAllowance = 0.005;
 /// and the rest of the step is tried again, at most this many times a step.
 constexpr int kMaxFoldRetries = 4;
 
+constexpr double kPi = std::numbers::pi;
+
+/// The a1, a2 step of the shape fit (parameterStep): Levenberg–Marquardt damping λ, relative
+/// to the diagonal of the Gauss–Newton matrix, starting here, divided by 10 after a whole
+/// step and multiplied by 10 after a halved or failed one, within these bounds ...
+constexpr double kStartParameterDamping = 1e-2;
+constexpr double kMinParameterDamping = 1e-6;
+constexpr double kMaxParameterDamping = 1e6;
+/// ... plus this fraction of the largest diagonal entry everywhere: parameters that move no
+/// strip value (a frame's a1 and a2 scaled together on strips of one frame, a strip value
+/// pinned to 0) then stay, and the system is positive definite.
+constexpr double kParameterFloor = 1e-9;
+/// Its conjugate gradients stop when the residual is this small relative to the gradient:
+/// the step need not be more exact than its linearisation.
+constexpr double kParameterCgTolerance = 1e-6;
+/// No ln a1 or ln a2 changes by more than this in one step (a factor e).
+constexpr double kMaxLogStep = 1.0;
+/// Halvings of the a1, a2 step tried before it is given up for this iteration.
+constexpr std::uint32_t kParameterHalvings = 3;
+
 std::uint32_t automaticSamples(std::size_t meshSamples, std::size_t frames) {
   const double perFrame = static_cast<double>(meshSamples) / static_cast<double>(frames);
   const auto g = static_cast<std::uint32_t>(std::ceil(std::sqrt(perFrame))) + 1;
@@ -221,17 +243,30 @@ class Fitter {
     FitResult result;
     Evaluation current = evaluate(model_);
     report(result, {0, current.measure, 0.0});
+    std::uint32_t iteration = 1;
+    result.stopReason = iterate(result, current, iteration);
+    if (options_.fitShape && current.measure.rms() > kExactRms) {
+      enableShape();
+      const std::string shapeReason = iterate(result, current, iteration);
+      result.stopReason = fmt::format("vertices: {}; vertices, forces, a1 and a2: {}",
+                                      result.stopReason, shapeReason);
+    }
+    result.model = model_;
+    return result;
+  }
+
+ private:
+  /// Iterations from `current` (numbered from `iteration` on, at most maxIterations of them)
+  /// until they converge or no step lowers the RMS; returns why they stopped. In the shape
+  /// phase each iteration is a least-squares step in the vertices and forces, then a step in
+  /// a1 and a2 (parameterStep), either of which may fail alone.
+  std::string iterate(FitResult& result, Evaluation& current, std::uint32_t& iteration) {
     std::uint32_t cleanSteps = kCleanStepsToLower - 1;  // the first full step lowers it
-    for (std::uint32_t it = 1;; ++it) {
+    for (std::uint32_t count = 1;; ++count) {
       const double rms = current.measure.rms();
-      if (rms <= kExactRms) {
-        result.stopReason = "the surface lies on the mesh to rounding";
-        break;
-      }
-      if (it > options_.maxIterations) {
-        result.stopReason = fmt::format("reached the iteration limit ({})", options_.maxIterations);
-        break;
-      }
+      if (rms <= kExactRms) return "the surface lies on the mesh to rounding";
+      if (count > options_.maxIterations)
+        return fmt::format("reached the iteration limit ({})", options_.maxIterations);
       // Line search: the whole step, else halves of it, until the RMS does not increase (and
       // no more samples fold over: tryStep holds back the frames that would fold); when no
       // fraction lowers the RMS, the tangential weight rises (towards plain distances) and
@@ -262,12 +297,12 @@ class Fitter {
         tangentialWeight_ = std::min(1.0, 10.0 * tangentialWeight_);
         raised = true;
       }
-      if (!accepted) {
-        result.stopReason = fmt::format(
-            "no step along the least-squares solution lowers the RMS (tried down to 1/{})",
-            1u << options_.maxHalvings);
-        break;
-      }
+      const double parameterFraction = shape_ ? parameterStep(current) : 0.0;
+      if (!accepted && parameterFraction == 0.0)
+        return fmt::format(
+            "no step along the least-squares solution lowers the RMS (tried down to 1/{}){}",
+            1u << options_.maxHalvings, shape_ ? ", nor any step in a1 and a2" : "");
+      if (!accepted) step = 0.0;
       // Full steps in a row lower the tangential weight; a shortened step, or one that needed
       // the weight raised, starts the count again (a weight that just failed would fail
       // again at once, and each failure costs a solve).
@@ -278,24 +313,19 @@ class Fitter {
         tangentialWeight_ = std::max(kMinTangentialWeight, 0.1 * tangentialWeight_);
         cleanSteps = 0;
       }
-      report(result, {it, current.measure, step});
+      report(result, {iteration++, current.measure, step, shape_, parameterFraction});
       const double decrease = (rms - current.measure.rms()) / rms;
       // A shortened step says the linearisation was poor, not that the fit is done: the
       // tangential weight has risen, so the next step is better damped. Only a full step (or
       // one at plain distances, which cannot be damped more) that gains little ends the fit.
-      if (decrease < options_.tolerance && (step == 1.0 || tangentialWeight_ >= 1.0)) {
-        result.stopReason = fmt::format(
+      if (decrease < options_.tolerance && (step == 1.0 || tangentialWeight_ >= 1.0))
+        return fmt::format(
             "converged: the last iteration lowered the RMS by {:.3g}%, less than the tolerance "
             "{:.3g}%",
             100.0 * decrease, 100.0 * options_.tolerance);
-        break;
-      }
     }
-    result.model = model_;
-    return result;
   }
 
- private:
   struct GridPoint {
     double u, v, weight;
   };
@@ -306,15 +336,21 @@ class Fitter {
   }
 
   /// The linear map for the current a1, a2 and fixed forces, and what depends on it: the
-  /// surface samples' weights and the strips' rows on the unknowns.
+  /// surface samples' weights and the strips' rows on the unknowns. In the shape phase the
+  /// forces are unknowns, not an offset: the map is built without them.
   void rebuildLinear() {
-    linear_ = std::make_unique<LinearSurface>(model_);
+    if (shape_) {
+      VertexFrameModel bare = model_;
+      for (Frame& f : bare.frames) f.forces.clear();
+      linear_ = std::make_unique<LinearSurface>(bare);
+    } else {
+      linear_ = std::make_unique<LinearSurface>(model_);
+    }
     const std::size_t nFrames = model_.frames.size();
     gridWeights_.resize(nFrames * grid_.size());
     for (std::uint32_t k = 0; k < nFrames; ++k)
       for (std::size_t s = 0; s < grid_.size(); ++s)
         gridWeights_[k * grid_.size() + s] = linear_->weights(k, grid_[s].u, grid_[s].v);
-    const auto n = static_cast<Eigen::Index>(model_.vertices.size());
     std::vector<Eigen::Triplet<double>> t;
     for (int c = 0; c < 3; ++c) {
       const auto& rows = linear_->stripRows(c);
@@ -322,24 +358,181 @@ class Fitter {
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows, s); it; ++it)
           t.emplace_back(3 * s + c, 3 * it.col() + c, it.value());
     }
-    strips_.resize(3 * static_cast<Eigen::Index>(linear_->stripCount()), 3 * n);
+    // The forces' unknowns (shape phase) follow the vertices' and no strip depends on them.
+    strips_.resize(3 * static_cast<Eigen::Index>(linear_->stripCount()), unknownCount());
     strips_.setFromTriplets(t.begin(), t.end());
   }
 
-  /// The unknowns that the least squares moves: the vertex positions, flattened.
+  /// 3 per vertex, and in the shape phase 3 per frame (its force's amplitude).
+  Eigen::Index unknownCount() const {
+    return 3 *
+           static_cast<Eigen::Index>(model_.vertices.size() + (shape_ ? model_.frames.size() : 0));
+  }
+
+  /// The unknowns that the least squares moves: the vertex positions, flattened, then in the
+  /// shape phase each frame's force amplitude.
   Eigen::VectorXd state() const {
-    Eigen::VectorXd y(3 * static_cast<Eigen::Index>(model_.vertices.size()));
-    for (std::size_t j = 0; j < model_.vertices.size(); ++j)
+    Eigen::VectorXd y(unknownCount());
+    const std::size_t n = model_.vertices.size();
+    for (std::size_t j = 0; j < n; ++j)
       y.segment<3>(3 * static_cast<Eigen::Index>(j)) = model_.vertices[j];
+    if (shape_)
+      for (std::size_t k = 0; k < model_.frames.size(); ++k)
+        y.segment<3>(3 * static_cast<Eigen::Index>(n + k)) = forceAmplitude(model_.frames[k]);
     return y;
   }
 
   /// The current model with the unknowns set to y.
   VertexFrameModel modelAt(const Eigen::VectorXd& y) const {
     VertexFrameModel m = model_;
-    for (std::size_t j = 0; j < m.vertices.size(); ++j)
+    const std::size_t n = m.vertices.size();
+    for (std::size_t j = 0; j < n; ++j)
       m.vertices[j] = y.segment<3>(3 * static_cast<Eigen::Index>(j));
+    if (shape_)
+      for (std::size_t k = 0; k < m.frames.size(); ++k)
+        setForceAmplitude(m.frames[k], y.segment<3>(3 * static_cast<Eigen::Index>(n + k)));
     return m;
+  }
+
+  /// The amplitude of a frame's whole-frame force: its particular solution is
+  /// k sin(πu) sin(πv) with k = -f0 / (π² (a1 + a2)) (docs/derivations.md §1.5, Lu = Lv = 1),
+  /// computed as the solver computes it (forceTerm, src/vertex_frames/solve.cpp).
+  static Vec3 forceAmplitude(const Frame& f) {
+    if (f.forces.empty()) return Vec3::Zero();
+    Vec3 k = Vec3::Zero();
+    for (int c = 0; c < 3; ++c)
+      if (f.forces[0].f0[c] != 0.0) k[c] = -f.forces[0].f0[c] / (kPi * kPi * (f.a1[c] + f.a2[c]));
+    return k;
+  }
+
+  /// Sets the frame's whole-frame force to amplitude k for its a1, a2 (none where k is 0).
+  static void setForceAmplitude(Frame& f, const Vec3& k) {
+    f.forces.clear();
+    if (k == Vec3::Zero()) return;
+    const Vec3 f0 = -kPi * kPi * k.cwiseProduct(f.a1 + f.a2);
+    f.forces.push_back({f0, Region{}});
+  }
+
+  /// The shape phase: the forces join the unknowns (their f0 from now on follows a1 and
+  /// a2 so that the amplitude stays when those change).
+  void enableShape() {
+    shape_ = true;
+    rebuildLinear();
+  }
+
+  /// One damped Gauss–Newton step in ln a1 and ln a2 of every frame (per component) on the
+  /// pairs of `current`, with the vertices and forces' amplitudes fixed; taken whole, else
+  /// halved, only where the measured RMS falls. Returns the fraction taken (0: none).
+  ///
+  /// a1 and a2 move the surface only through the strip values X (the forces keep their
+  /// amplitude), so S_i = S_i⁰ + A_i ΔX and ΔX ≈ G Δθ with G = linear_->parameterJacobian.
+  /// The squared distances are then ½ Δθᵀ (Gᵀ K G) Δθ + (Gᵀ g)ᵀ Δθ + const with
+  /// K = Σ w A_iᵀ M A_i and g = Σ w A_iᵀ M (S_i⁰ - t_i), both over the strips (small and
+  /// sparse); Gᵀ K G couples every frame of two crossing strips, so it is never formed:
+  /// Jacobi-preconditioned conjugate gradients apply it as products with G, K and Gᵀ.
+  /// Levenberg–Marquardt damping λ diag(GᵀKG) adapts as the tangential weight does.
+  double parameterStep(Evaluation& current) {
+    const FrameTopology& topo = linear_->topology();
+    const auto nFrames = static_cast<std::uint32_t>(model_.frames.size());
+    const auto strips3 = 3 * static_cast<Eigen::Index>(topo.stripCount);
+    const Eigen::Index params = 6 * static_cast<Eigen::Index>(nFrames);
+    if (strips3 == 0) return 0.0;
+    const VertexFrameSurface surface = solve(model_, linear_->sharedTopology());
+    const Eigen::SparseMatrix<double> g = linear_->parameterJacobian(model_.vertices);
+    using Block = Eigen::Matrix<double, 6, 6>;
+    std::vector<Block> blocks(nFrames, Block::Zero());
+    Eigen::VectorXd gradientX = Eigen::VectorXd::Zero(strips3);
+    const double mu = tangentialWeight_;
+    for (const Pair& p : current.pairs) {
+      const double b0 = topo.parity[p.frame][0] * fit::cubicShape(p.u);
+      const double b1 = topo.parity[p.frame][1] * fit::cubicShape(p.v);
+      const Eigen::Matrix3d m =
+          mu * Eigen::Matrix3d::Identity() + (1.0 - mu) * p.normal * p.normal.transpose();
+      const Vec3 mr = m * (surface.patches[p.frame].position(p.u, p.v) - p.target);
+      Block& block = blocks[p.frame];
+      block.block<3, 3>(0, 0) += (p.weight * b0 * b0) * m;
+      block.block<3, 3>(0, 3) += (p.weight * b0 * b1) * m;
+      block.block<3, 3>(3, 0) += (p.weight * b1 * b0) * m;
+      block.block<3, 3>(3, 3) += (p.weight * b1 * b1) * m;
+      gradientX.segment<3>(3 * Eigen::Index{topo.strip[p.frame][0]}) += p.weight * b0 * mr;
+      gradientX.segment<3>(3 * Eigen::Index{topo.strip[p.frame][1]}) += p.weight * b1 * mr;
+    }
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(std::size_t{nFrames} * 36);
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j)
+          triplets.emplace_back(3 * Eigen::Index{topo.strip[k][i / 3]} + i % 3,
+                                3 * Eigen::Index{topo.strip[k][j / 3]} + j % 3, blocks[k](i, j));
+    Eigen::SparseMatrix<double> kx(strips3, strips3);
+    kx.setFromTriplets(triplets.begin(), triplets.end());
+    // diag(GᵀKG): a parameter moves at most its frame's two strips (two entries a column).
+    Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(params);
+    for (Eigen::Index col = 0; col < g.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator a(g, col); a; ++a)
+        for (Eigen::SparseMatrix<double>::InnerIterator b(g, col); b; ++b)
+          diagonal[col] += a.value() * kx.coeff(a.row(), b.row()) * b.value();
+    const double largest = diagonal.maxCoeff();
+    if (!(largest > 0.0)) return 0.0;
+    const Eigen::VectorXd damped =
+        (1.0 + parameterDamping_) * diagonal.array() + kParameterFloor * largest;
+    const Eigen::VectorXd rhs = -(g.transpose() * gradientX);
+    auto apply = [&](const Eigen::VectorXd& x) {
+      const Eigen::VectorXd gx = g * x;
+      return Eigen::VectorXd(g.transpose() * (kx * gx) +
+                             parameterDamping_ * diagonal.cwiseProduct(x) +
+                             kParameterFloor * largest * x);
+    };
+    Eigen::VectorXd delta = Eigen::VectorXd::Zero(params);
+    Eigen::VectorXd r = rhs;
+    Eigen::VectorXd z = r.cwiseQuotient(damped);
+    Eigen::VectorXd dir = z;
+    double rz = r.dot(z);
+    const double bound = kParameterCgTolerance * rhs.norm();
+    for (int step = 0; step < kMaxCgSteps && r.norm() > bound; ++step) {
+      const Eigen::VectorXd hd = apply(dir);
+      const double curvature = dir.dot(hd);
+      if (!(curvature > 0.0)) break;
+      const double alpha = rz / curvature;
+      delta += alpha * dir;
+      r -= alpha * hd;
+      z = r.cwiseQuotient(damped);
+      const double next = r.dot(z);
+      dir = z + (next / rz) * dir;
+      rz = next;
+    }
+    // A trust region: no parameter changes by more than a factor e in one step.
+    const double largestChange = delta.cwiseAbs().maxCoeff();
+    if (!(largestChange > 0.0) || !std::isfinite(largestChange)) return 0.0;
+    if (largestChange > kMaxLogStep) delta *= kMaxLogStep / largestChange;
+
+    const double rms = current.measure.rms();
+    for (std::uint32_t h = 0; h <= kParameterHalvings; ++h) {
+      const double fraction = std::ldexp(1.0, -static_cast<int>(h));
+      VertexFrameModel candidate = model_;
+      for (std::uint32_t k = 0; k < nFrames; ++k) {
+        Frame& f = candidate.frames[k];
+        const Vec3 amplitude = forceAmplitude(f);
+        for (int w = 0; w < 2; ++w) {
+          Vec3& a = w == 0 ? f.a1 : f.a2;
+          for (int c = 0; c < 3; ++c)
+            a[c] = std::clamp(a[c] * std::exp(fraction * delta[6 * k + 3 * w + c]),
+                              kMinShapeParameter, kMaxShapeParameter);
+        }
+        setForceAmplitude(f, amplitude);
+      }
+      Evaluation next = evaluate(candidate, &current);
+      if (!(next.measure.rms() < rms)) continue;
+      if (options_.preventFolds && next.measure.foldedSamples > foldLimit(current)) continue;
+      model_ = std::move(candidate);
+      current = std::move(next);
+      rebuildLinear();
+      parameterDamping_ = h == 0 ? std::max(kMinParameterDamping, 0.1 * parameterDamping_)
+                                 : std::min(kMaxParameterDamping, 10.0 * parameterDamping_);
+      return fraction;
+    }
+    parameterDamping_ = std::min(kMaxParameterDamping, 10.0 * parameterDamping_);
+    return 0.0;
   }
 
   /// The most folded samples a step from `current` may leave (FitOptions::preventFolds).
@@ -597,44 +790,56 @@ class Fitter {
   /// the sparse Cholesky factor of K's local block K_yy (its pattern analysed once), and
   /// start from the current unknowns y0.
   Eigen::VectorXd leastSquares(const std::vector<Pair>& pairs, const Eigen::VectorXd& y0) {
+    return shape_ ? leastSquares<11>(pairs, y0) : leastSquares<10>(pairs, y0);
+  }
+
+  /// Slots: a frame's unknowns, 8 vertices and 2 strips, and in the shape phase (11) its
+  /// force's amplitude, whose weight at (u, v) is sin(πu) sin(πv).
+  template <int Slots>
+  Eigen::VectorXd leastSquares(const std::vector<Pair>& pairs, const Eigen::VectorXd& y0) {
     const auto n = static_cast<Eigen::Index>(model_.vertices.size());
     const auto strips = static_cast<Eigen::Index>(linear_->stripCount());
     const Eigen::Index free = y0.size(), size = free + 3 * strips;
     const auto nFrames = model_.frames.size();
     const auto& topo = linear_->topology();
-    // Unknown (slot i of frame k, component c) at 3 × (vertex, or free / 3 + strip) + c.
+    // Unknown (slot i of frame k, component c) at 3 × (vertex, n + frame for the force, or
+    // free / 3 + strip) + c.
     auto unknown = [&](std::size_t k, int i) {
-      return i < 8 ? Eigen::Index{model_.frames[k].vertices[i]}
-                   : free / 3 + Eigen::Index{topo.strip[k][i - 8]};
+      return i < 8    ? Eigen::Index{model_.frames[k].vertices[i]}
+             : i < 10 ? free / 3 + Eigen::Index{topo.strip[k][i - 8]}
+                      : n + static_cast<Eigen::Index>(k);
     };
-    // Per frame, the 30 × 30 normal block of its unknowns: Σ w (a aᵀ) ⊗ M.
-    using Block = Eigen::Matrix<double, 30, 30>;
+    // Per frame, the 3 Slots × 3 Slots normal block of its unknowns: Σ w (a aᵀ) ⊗ M.
+    using Block = Eigen::Matrix<double, 3 * Slots, 3 * Slots>;
     std::vector<Block> blocks(nFrames, Block::Zero());
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(size);
     const double mu = tangentialWeight_;
     for (const Pair& p : pairs) {
       const PointWeights w = p.sample >= 0 ? gridWeights_[static_cast<std::size_t>(p.sample)]
                                            : linear_->weights(p.frame, p.u, p.v);
-      Eigen::Matrix<double, 10, 1> a;
+      Eigen::Matrix<double, Slots, 1> a;
       for (int i = 0; i < 8; ++i) a[i] = w.vertex[i];
       a[8] = w.strip[0];
       a[9] = w.strip[1];
+      if constexpr (Slots == 11)
+        a[10] = detail::forceShape(p.u, 0.0, 1.0).s * detail::forceShape(p.v, 0.0, 1.0).s;
       const Eigen::Matrix3d m =
           mu * Eigen::Matrix3d::Identity() + (1.0 - mu) * p.normal * p.normal.transpose();
-      const Eigen::Matrix<double, 10, 10> aa = p.weight * a * a.transpose();
+      const Eigen::Matrix<double, Slots, Slots> aa = p.weight * a * a.transpose();
       Block& block = blocks[p.frame];
-      for (int i = 0; i < 10; ++i)
-        for (int j = 0; j < 10; ++j) block.block<3, 3>(3 * i, 3 * j) += aa(i, j) * m;
+      for (int i = 0; i < Slots; ++i)
+        for (int j = 0; j < Slots; ++j) block.template block<3, 3>(3 * i, 3 * j) += aa(i, j) * m;
       const Vec3 mt = m * (p.target - w.offset);
-      for (int i = 0; i < 10; ++i) rhs.segment<3>(3 * unknown(p.frame, i)) += p.weight * a[i] * mt;
+      for (int i = 0; i < Slots; ++i)
+        rhs.segment<3>(3 * unknown(p.frame, i)) += p.weight * a[i] * mt;
     }
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(nFrames * 900);
+    triplets.reserve(nFrames * 9 * Slots * Slots);
     std::vector<char> used(static_cast<std::size_t>(n), 0);
     for (std::size_t k = 0; k < nFrames; ++k) {
       for (std::uint32_t v : model_.frames[k].vertices) used[v] = 1;
-      for (int i = 0; i < 10; ++i)
-        for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < Slots; ++i)
+        for (int j = 0; j < Slots; ++j)
           for (int c = 0; c < 3; ++c)
             for (int d = 0; d < 3; ++d)
               triplets.emplace_back(3 * unknown(k, i) + c, 3 * unknown(k, j) + d,
@@ -711,6 +916,8 @@ class Fitter {
   /// strip s in row 3s + c).
   Eigen::SparseMatrix<double, Eigen::RowMajor> strips_;
   double tangentialWeight_ = 1.0;
+  bool shape_ = false;  ///< the shape phase: forces among the unknowns, a1 and a2 stepped
+  double parameterDamping_ = kStartParameterDamping;  ///< λ of parameterStep
   Eigen::SparseMatrix<double> laplacian_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
   Eigen::Index analysedNonZeros_ = -1;  ///< of the pattern factor_ analysed (-1: none yet)
@@ -722,6 +929,30 @@ FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
                           const FitOptions& options) {
   if (options.samplesPerSide != 0 && options.samplesPerSide < 3)
     throw std::invalid_argument("fit: samplesPerSide must be 0 (automatic) or at least 3");
+  if (options.fitShape) {
+    if (!start.forces.empty())
+      throw std::invalid_argument(
+          fmt::format("fit: the shape fit sets a force on every frame, but the start model has "
+                      "{} shared force(s) already",
+                      start.forces.size()));
+    for (std::size_t k = 0; k < start.frames.size(); ++k) {
+      const Frame& f = start.frames[k];
+      if (!f.forces.empty())
+        throw std::invalid_argument(
+            fmt::format("fit: the shape fit sets a force on every frame, but frame {} of the "
+                        "start model has {} force(s) already",
+                        k, f.forces.size()));
+      for (int w = 0; w < 2; ++w)
+        for (int c = 0; c < 3; ++c) {
+          const double a = (w == 0 ? f.a1 : f.a2)[c];
+          if (!(a >= kMinShapeParameter && a <= kMaxShapeParameter))
+            throw std::invalid_argument(fmt::format(
+                "fit: frame {} has a{}.{} = {}, outside the range the shape fit keeps a1 and a2 "
+                "in, [{}, {}]",
+                k, w + 1, "xyz"[c], a, kMinShapeParameter, kMaxShapeParameter));
+        }
+    }
+  }
   Fitter fitter(start, target, options);
   return fitter.run();
 }

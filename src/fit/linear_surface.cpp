@@ -120,6 +120,53 @@ std::vector<Vec3> LinearSurface::stripValues(const std::vector<Vec3>& vertices) 
   return values;
 }
 
+Eigen::SparseMatrix<double, Eigen::RowMajor> LinearSurface::parameterJacobian(
+    const std::vector<Vec3>& vertices) const {
+  const FrameTopology& topo = *topology_;
+  const std::uint32_t strips = topo.stripCount;
+  const auto nFrames = static_cast<std::uint32_t>(frames_.size());
+  const std::vector<Vec3> x = stripValues(vertices);
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int c = 0; c < 3; ++c) {
+    // The same scaling by the strip's largest |a| as the solver's: X is unchanged by it,
+    // and so are its derivatives (N and D both scale by its square).
+    std::vector<double> scale(strips, 0.0), den(strips, 0.0);
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (int d = 0; d < 2; ++d) {
+        const double a = std::abs(d == 0 ? frames_[k].a1[c] : frames_[k].a2[c]);
+        scale[topo.strip[k][d]] = std::max(scale[topo.strip[k][d]], a);
+      }
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (int d = 0; d < 2; ++d) {
+        const std::uint32_t s = topo.strip[k][d];
+        if (scale[s] == 0.0) continue;
+        const double a = (d == 0 ? frames_[k].a1[c] : frames_[k].a2[c]) / scale[s];
+        den[s] += a * a;
+      }
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (int d = 0; d < 2; ++d) {
+        const std::uint32_t s = topo.strip[k][d];
+        if (topo.stripPinned[s] || den[s] == 0.0) continue;  // X is 0 whatever a1, a2 are
+        const Frame& f = frames_[k];
+        const double a = (d == 0 ? f.a1[c] : f.a2[c]) / scale[s];
+        const double other = (d == 0 ? f.a2[c] : f.a1[c]) / scale[s];
+        double cross = 0.0;
+        for (int i = 0; i < 8; ++i) cross += crossWeights()[d][i] * vertices[f.vertices[i]][c];
+        const double term = topo.parity[k][d] * a * other * cross / 3.0;  // this term of N_s
+        // Column of ln a (a1 for the u-strip, d = 0) and of ln other.
+        const auto own = static_cast<Eigen::Index>(6 * k + 3 * d + c);
+        const auto second = static_cast<Eigen::Index>(6 * k + 3 * (1 - d) + c);
+        const auto row = static_cast<Eigen::Index>(3 * s + c);
+        triplets.emplace_back(row, own, -(term + x[s][c] * 2.0 * a * a) / den[s]);
+        triplets.emplace_back(row, second, -term / den[s]);
+      }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> jacobian(3 * static_cast<Eigen::Index>(strips),
+                                                        6 * static_cast<Eigen::Index>(nFrames));
+  jacobian.setFromTriplets(triplets.begin(), triplets.end());
+  return jacobian;
+}
+
 Vec3 LinearSurface::position(const std::vector<Vec3>& vertices, std::uint32_t frame, double u,
                              double v) const {
   const PointWeights w = weights(frame, u, v);

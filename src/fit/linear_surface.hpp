@@ -48,6 +48,15 @@ class LinearSurface {
   /// The strip values of the given vertices, per strip, per component.
   std::vector<Vec3> stripValues(const std::vector<Vec3>& vertices) const;
 
+  /// How the global solver's strip values move with the frames' a1 and a2, at the given
+  /// vertices: row 3s + c, column 6k + 3w + c is ∂X_s[c] / ∂ ln a_w[c] of frame k (w = 0:
+  /// a1, 1: a2). With X_s = -N_s / D_s, N_s = Σ s_p a_p o_p cross_p / 3 and D_s = Σ a_p²
+  /// (src/vertex_frames/solve.cpp), each term of N_s is of degree one in ln a1 and in ln a2
+  /// of its frame and a_p² of degree two in its own a, so ∂X_s = -(∂N_s + X_s ∂D_s) / D_s
+  /// (docs/rebuild.md, "Fitting the shape"). Pinned and undetermined strips have zero rows.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> parameterJacobian(
+      const std::vector<Vec3>& vertices) const;
+
   const Frame& frame(std::uint32_t k) const { return frames_[k]; }
 
  private:

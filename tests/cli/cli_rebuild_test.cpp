@@ -106,6 +106,59 @@ TEST_F(CliRebuild, AGridOnADiskMeshMakesUTimesVFrames) {
   EXPECT_EQ(work_.entries(), std::vector<std::string>{"peaks.json"});
 }
 
+/// The last "iteration N" line's number in the output.
+int lastIteration(const std::string& out) {
+  const auto at = out.rfind("\niteration ");
+  return at == std::string::npos ? -1 : std::stoi(out.substr(at + 11));
+}
+
+TEST_F(CliRebuild, FitShapeFitsForcesAndParametersAfterTheVerticesAndEndsNoHigher) {
+  writeTorusAndCage();
+  const CliRun plain =
+      run("rebuild torus.obj --as vertex-frames --layout cage.obj --iterations 8 -o plain.json");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const CliRun shaped =
+      run("rebuild torus.obj --as vertex-frames --layout cage.obj --iterations 8 --fit-shape -o "
+          "shaped.json");
+  ASSERT_EQ(shaped.code, 0) << shaped.err;
+  // The vertex iterations are the plain fit's; the shape iterations follow, marked.
+  const int plainLast = lastIteration(plain.out), shapedLast = lastIteration(shaped.out);
+  ASSERT_GT(shapedLast, plainLast) << shaped.out;
+  EXPECT_EQ(shaped.out.find(fmt::format("iteration {:>3} (step", plainLast + 1)), std::string::npos)
+      << shaped.out;
+  EXPECT_TRUE(contains(shaped.out, fmt::format("iteration {:>3} (shape: step", plainLast + 1)))
+      << shaped.out;
+  EXPECT_TRUE(contains(shaped.out, "vertices, forces, a1 and a2: ")) << shaped.out;
+  EXPECT_LE(iterationRms(shaped.out, shapedLast), iterationRms(plain.out, plainLast)) << shaped.out;
+  const VertexFrameModel model = loadVertexFrameModel(path("shaped.json"));
+  std::size_t forces = 0;
+  for (const Frame& f : model.frames) forces += f.forces.size();
+  EXPECT_GT(forces, 0u);
+  // The model file is what compare measures; the distances it prints are the file's.
+  const CliRun c = run("compare shaped.json torus.obj --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  const Json d = Json::parse(c.out);
+  EXPECT_TRUE(
+      contains(shaped.out, fmt::format("RMS {:.6g} (", d["model_to_mesh"]["rms"].get<double>())))
+      << shaped.out;
+}
+
+TEST_F(CliRebuild, FitShapeInBadCombinationsIsAUsageError) {
+  writeTorusAndCage();
+  CliRun r = run("rebuild torus.obj --as cross-sections --fit-shape -o out.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err,
+                       "--fit-shape fits the force, a1 and a2 of vertex frames: it needs "
+                       "--as vertex-frames"))
+      << r.err;
+  r =
+      run("rebuild torus.obj --as vertex-frames --layout cage.obj --fit-shape --iterations 0 -o "
+          "out.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "--fit-shape with --iterations 0 would fit nothing")) << r.err;
+  EXPECT_FALSE(std::ifstream(path("out.json")).good());
+}
+
 TEST_F(CliRebuild, BadLayoutsAndMeshesExitOneNamingTheProblemAndWriteNothing) {
   writeTorusAndCage();
   put("tri.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1 3 4\n");
