@@ -52,6 +52,13 @@ inline CLI::Option* addResolution(CLI::App* cmd, std::uint32_t& resolution,
       ->capture_default_str();
 }
 
+/// An option whose value must lie in [lo, hi], shown with its default in --help.
+template <class T>
+CLI::Option* addInRange(CLI::App* cmd, const std::string& name, T& value, const std::string& help,
+                        T lo, T hi) {
+  return cmd->add_option(name, value, help)->check(CLI::Range(lo, hi))->capture_default_str();
+}
+
 /// The required positional argument "model": the model file a command reads.
 inline CLI::Option* addModelFile(CLI::App* cmd, std::string& path,
                                  const std::string& help = "model file (JSON)") {

@@ -108,19 +108,16 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
                   "closed round the tube)")
       ->expected(2)
       ->check(CLI::Range(1u, 1000u));
-  cmd->add_option("--iterations", iterations, "vertex-frames: most fitting iterations")
-      ->check(CLI::Range(0u, 100000u))
-      ->capture_default_str();
-  cmd->add_option("--tolerance", tolerance,
-                  "vertex-frames: stop when an iteration lowers the RMS by less than this "
-                  "fraction of it")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  cmd->add_option("--smoothness", smoothness,
-                  "vertex-frames: weight of the Laplacian of the vertex positions against the "
-                  "mean squared distances")
-      ->check(CLI::Range(0.0, 1e6))
-      ->capture_default_str();
+  addInRange(cmd, "--iterations", iterations, "vertex-frames: most fitting iterations", 0u,
+             100000u);
+  addInRange(cmd, "--tolerance", tolerance,
+             "vertex-frames: stop when an iteration lowers the RMS by less than this "
+             "fraction of it",
+             0.0, 1.0);
+  addInRange(cmd, "--smoothness", smoothness,
+             "vertex-frames: weight of the Laplacian of the vertex positions against the "
+             "mean squared distances",
+             0.0, 1e6);
   cmd->add_option("--fit-samples", samples,
                   "vertex-frames: surface samples per patch side (3 to 65; 0: about as many "
                   "surface samples as mesh vertices, 4 to 9 a side)")
@@ -148,9 +145,7 @@ CLI::App* RebuildCommand::add(CLI::App& app) {
   cmd->add_option("--axis", axis, "cross-sections: axis the slicing planes are perpendicular to")
       ->check(CLI::IsMember({"x", "y", "z"}))
       ->capture_default_str();
-  cmd->add_option("--count", sectionCount, "cross-sections: number of sections K")
-      ->check(CLI::Range(2u, 100000u))
-      ->capture_default_str();
+  addInRange(cmd, "--count", sectionCount, "cross-sections: number of sections K", 2u, 100000u);
   cmd->add_option("--range", range,
                   "cross-sections: sections from a to b, both ends included (default: the "
                   "mesh's extent cut into K slabs, a plane in the middle of each)")
@@ -162,12 +157,9 @@ CLI::App* RebuildCommand::add(CLI::App& app) {
   cmd->add_flag("--track", track,
                 "cross-sections: follow the part from plane to plane (each plane: the loop "
                 "nearest to the previous plane's)");
-  cmd->add_option("--modes", modes, "Fourier modes per section")
-      ->check(CLI::Range(1u, 256u))
-      ->capture_default_str();
-  cmd->add_option("--points", points, "points per section after arc-length resampling")
-      ->check(CLI::Range(8u, 100000u))
-      ->capture_default_str();
+  addInRange(cmd, "--modes", modes, "Fourier modes per section", 1u, 256u);
+  addInRange(cmd, "--points", points, "points per section after arc-length resampling", 8u,
+             100000u);
   cmd->add_option("--a", a, "the sixth-order operator's a (chain parameter u in [0, 1])")
       ->capture_default_str();
   cmd->add_option("--ends", ends,
@@ -178,9 +170,8 @@ CLI::App* RebuildCommand::add(CLI::App& app) {
   cmd->add_option("--name", name, "the model's name (default: the mesh file's name)");
   cmd->add_option("--part", partPath,
                   "also write the part of the mesh the model rebuilds (.obj .ply .stl .off)");
-  cmd->add_option("--samples", samples, "face samples on each mesh for the distances")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
-      ->capture_default_str();
+  addInRange(cmd, "--samples", samples, "face samples on each mesh for the distances",
+             std::size_t{1}, std::size_t{100000000});
   cmd->add_flag("--exact", exact,
                 "cross-sections: pass through every prepared point of every section (the "
                 "model keeps the points and the remainder; more storage) instead of their "
@@ -190,11 +181,10 @@ CLI::App* RebuildCommand::add(CLI::App& app) {
                 "(BRepOffsetAPI_ThruSections through periodic interpolating B-splines) and "
                 "measure it the same way: the peer a CAD user would reach for");
   cmd->add_flag("--json", json, "cross-sections: print JSON");
-  cmd->add_option("--resolution", resolution,
-                  "vertex-frames: samples per patch side for the distances printed at the end, "
-                  "as for compare")
-      ->check(CLI::Range(2u, 4097u))
-      ->capture_default_str();
+  addInRange(cmd, "--resolution", resolution,
+             "vertex-frames: samples per patch side for the distances printed at the end, "
+             "as for compare",
+             2u, 4097u);
   cmd->add_flag("-q,--quiet", quiet, "vertex-frames: print nothing on success");
   vertexFrames.add(cmd);
   return cmd;

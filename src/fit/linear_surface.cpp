@@ -41,6 +41,30 @@ const CrossWeights& crossWeights() {
   return table;
 }
 
+/// Per strip, for component c: the largest |a| of the frames along it (the solver's scaling,
+/// which keeps the sums finite) and D = Σ (a / scale)² over its frames.
+struct StripScales {
+  std::vector<double> scale, den;
+};
+
+StripScales stripScales(const FrameTopology& topo, const std::vector<Frame>& frames, int c) {
+  StripScales out{std::vector<double>(topo.stripCount, 0.0),
+                  std::vector<double>(topo.stripCount, 0.0)};
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    for (int d = 0; d < 2; ++d) {
+      const double a = std::abs(d == 0 ? frames[k].a1[c] : frames[k].a2[c]);
+      out.scale[topo.strip[k][d]] = std::max(out.scale[topo.strip[k][d]], a);
+    }
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    for (int d = 0; d < 2; ++d) {
+      const std::uint32_t s = topo.strip[k][d];
+      if (out.scale[s] == 0.0) continue;
+      const double a = (d == 0 ? frames[k].a1[c] : frames[k].a2[c]) / out.scale[s];
+      out.den[s] += a * a;
+    }
+  return out;
+}
+
 }  // namespace
 
 LinearSurface::LinearSurface(const VertexFrameModel& model)
@@ -58,19 +82,7 @@ LinearSurface::LinearSurface(const VertexFrameModel& model)
   const std::uint32_t strips = topo.stripCount;
   const auto nFrames = static_cast<std::uint32_t>(frames_.size());
   for (int c = 0; c < 3; ++c) {
-    std::vector<double> scale(strips, 0.0), den(strips, 0.0);
-    for (std::uint32_t k = 0; k < nFrames; ++k)
-      for (int d = 0; d < 2; ++d) {
-        const double a = std::abs(d == 0 ? frames_[k].a1[c] : frames_[k].a2[c]);
-        scale[topo.strip[k][d]] = std::max(scale[topo.strip[k][d]], a);
-      }
-    for (std::uint32_t k = 0; k < nFrames; ++k)
-      for (int d = 0; d < 2; ++d) {
-        const std::uint32_t s = topo.strip[k][d];
-        if (scale[s] == 0.0) continue;
-        const double a = (d == 0 ? frames_[k].a1[c] : frames_[k].a2[c]) / scale[s];
-        den[s] += a * a;
-      }
+    const auto [scale, den] = stripScales(topo, frames_, c);
     std::vector<Eigen::Triplet<double>> triplets;
     for (std::uint32_t k = 0; k < nFrames; ++k)
       for (int d = 0; d < 2; ++d) {
@@ -130,19 +142,7 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> LinearSurface::parameterJacobian(
   for (int c = 0; c < 3; ++c) {
     // The same scaling by the strip's largest |a| as the solver's: X is unchanged by it,
     // and so are its derivatives (N and D both scale by its square).
-    std::vector<double> scale(strips, 0.0), den(strips, 0.0);
-    for (std::uint32_t k = 0; k < nFrames; ++k)
-      for (int d = 0; d < 2; ++d) {
-        const double a = std::abs(d == 0 ? frames_[k].a1[c] : frames_[k].a2[c]);
-        scale[topo.strip[k][d]] = std::max(scale[topo.strip[k][d]], a);
-      }
-    for (std::uint32_t k = 0; k < nFrames; ++k)
-      for (int d = 0; d < 2; ++d) {
-        const std::uint32_t s = topo.strip[k][d];
-        if (scale[s] == 0.0) continue;
-        const double a = (d == 0 ? frames_[k].a1[c] : frames_[k].a2[c]) / scale[s];
-        den[s] += a * a;
-      }
+    const auto [scale, den] = stripScales(topo, frames_, c);
     for (std::uint32_t k = 0; k < nFrames; ++k)
       for (int d = 0; d < 2; ++d) {
         const std::uint32_t s = topo.strip[k][d];
