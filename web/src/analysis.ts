@@ -3,7 +3,7 @@
 import * as THREE from 'three';
 import { api } from './api';
 import { $ } from './dom';
-import type { CurvatureMode } from './scene';
+import type { CurvatureMode } from './surface-view';
 import type { Studio } from './studio';
 
 const AXIS: Record<string, THREE.Vector3> = {

@@ -1,4 +1,4 @@
-// The frame view's region redraw during a drag (scene.ts, FrameView): which line segments
+// The frame view's region redraw during a drag (frame-view.ts, FrameView): which line segments
 // and point handles may cover a pixel of a screen rectangle. On software WebGL a draw of
 // the view costs per primitive, not per pixel (a 1,000-frame sheet: 8,000 segments and
 // 3,131 handles, ~17 ms whatever the scissor), and the page's main thread waits for it, so

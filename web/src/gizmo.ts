@@ -99,7 +99,7 @@ export function mountGizmo(studio: Studio): Gizmo {
     controls.enabled = helper.visible;
     if (centre && !dragStart) proxy.position.set(...centre);
     // Only a shown gizmo (or one shown or hidden now) needs the frame view drawn whole: a
-    // hidden one must not turn a vertex drag's region redraw (scene.ts) into whole draws.
+    // hidden one must not turn a vertex drag's region redraw (frame-view.ts) into whole draws.
     if (helper.visible || wasVisible) frameView.invalidate();
   };
   store.subscribe(['model', 'selection', 'vertex'], place);

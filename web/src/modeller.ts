@@ -12,7 +12,7 @@ import { mountForcesTool } from './forces-tool';
 import type { ForcesTool } from './forces-tool';
 import { mountGizmo, selectionVertices } from './gizmo';
 import type { Gizmo } from './gizmo';
-import { modelBox } from './scene';
+import { modelBox } from './viewport';
 import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
 import type { Studio } from './studio';
 import { addFrameEdit, extrudeEdit, framesEdit, splitEdit, toggled, weldEdit } from './structure';

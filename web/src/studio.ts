@@ -8,7 +8,9 @@ import { $ } from './dom';
 import { MeshSync } from './mesh-sync';
 import { EditPump } from './pump';
 import { previewResolution } from './preview';
-import { FrameView, SurfaceView, modelBox, pointsBox } from './scene';
+import { FrameView } from './frame-view';
+import { SurfaceView } from './surface-view';
+import { modelBox, pointsBox } from './viewport';
 import { Store } from './store';
 import type { MeshData } from './wire';
 

@@ -60,7 +60,7 @@ export function installTestHooks(studio: Studio): void {
       surfaceView.controls.update();
       surfaceView.invalidate();
     },
-    /** The frame view's region draws so far (a drag's moved handles: scene.ts). */
+    /** The frame view's region draws so far (a drag's moved handles: frame-view.ts). */
     frameRegionDraws: () => frameView.regionDraws,
     /** Pixels of the frame view as drawn, then as a whole draw gives them now: how many
      * differ (its drawing buffer is preserved: region draws keep the rest). */

@@ -4,7 +4,7 @@ import { api } from './api';
 import type { Transform, Vec3 } from './api';
 import { $, readNumber } from './dom';
 import type { NumberRule } from './input';
-import { modelBox } from './scene';
+import { modelBox } from './viewport';
 import type { Studio } from './studio';
 
 /** The bounding box of a mesh's positions (null when empty). */

@@ -2,8 +2,8 @@
 // other). Presets and fits apply to both views: they show the same model in the same space.
 import * as THREE from 'three';
 import { $ } from './dom';
-import { VIEW_DIRECTIONS, modelBox, pointsBox } from './scene';
-import type { ViewName } from './scene';
+import { VIEW_DIRECTIONS, modelBox, pointsBox } from './viewport';
+import type { ViewName } from './viewport';
 import type { State } from './store';
 import type { Studio } from './studio';
 
