@@ -182,6 +182,34 @@ constexpr double kCgReduction = 1e-4;
 /// only: a few dozen steps in practice); then the best iterate is used.
 constexpr int kMaxCgSteps = 400;
 
+/// Preconditioned conjugate gradients on A x = b from x (apply: v ↦ A v, A symmetric;
+/// precondition: r ↦ M⁻¹ r), until the residual is within `tolerance` of |b| or within
+/// `reduction` of the starting residual, kMaxCgSteps at most; a direction of non-positive
+/// curvature (A not positive there, or rounding) ends it.
+template <class Apply, class Precondition>
+Eigen::VectorXd conjugateGradients(const Apply& apply, const Precondition& precondition,
+                                   const Eigen::VectorXd& b, Eigen::VectorXd x, double tolerance,
+                                   double reduction) {
+  Eigen::VectorXd r = b - apply(x);
+  Eigen::VectorXd z = precondition(r);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z);
+  const double bound = std::max(tolerance * b.norm(), reduction * r.norm());
+  for (int step = 0; step < kMaxCgSteps && r.norm() > bound; ++step) {
+    const Eigen::VectorXd hp = apply(p);
+    const double curvature = p.dot(hp);
+    if (!(curvature > 0.0)) break;
+    const double alpha = rz / curvature;
+    x += alpha * p;
+    r -= alpha * hp;
+    z = precondition(r);
+    const double next = r.dot(z);
+    p = z + (next / rz) * p;
+    rz = next;
+  }
+  return x;
+}
+
 /// A step may fold over up to this share of the samples even where the surface had fewer
 /// folded ones: at a cliff or near the mesh's boundary a sample's closest point can lie on
 /// a triangle that faces away, which is no fold of the surface, and holding every such
@@ -483,24 +511,9 @@ class Fitter {
                              parameterDamping_ * diagonal.cwiseProduct(x) +
                              kParameterFloor * largest * x);
     };
-    Eigen::VectorXd delta = Eigen::VectorXd::Zero(params);
-    Eigen::VectorXd r = rhs;
-    Eigen::VectorXd z = r.cwiseQuotient(damped);
-    Eigen::VectorXd dir = z;
-    double rz = r.dot(z);
-    const double bound = kParameterCgTolerance * rhs.norm();
-    for (int step = 0; step < kMaxCgSteps && r.norm() > bound; ++step) {
-      const Eigen::VectorXd hd = apply(dir);
-      const double curvature = dir.dot(hd);
-      if (!(curvature > 0.0)) break;
-      const double alpha = rz / curvature;
-      delta += alpha * dir;
-      r -= alpha * hd;
-      z = r.cwiseQuotient(damped);
-      const double next = r.dot(z);
-      dir = z + (next / rz) * dir;
-      rz = next;
-    }
+    Eigen::VectorXd delta = conjugateGradients(
+        apply, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(r.cwiseQuotient(damped)); },
+        rhs, Eigen::VectorXd::Zero(params), kParameterCgTolerance, 0.0);
     // A trust region: no parameter changes by more than a factor e in one step.
     const double largestChange = delta.cwiseAbs().maxCoeff();
     if (!(largestChange > 0.0) || !std::isfinite(largestChange)) return 0.0;
@@ -883,26 +896,10 @@ class Fitter {
       return Eigen::VectorXd(kz.head(free) + strips_.transpose() * kz.tail(3 * strips));
     };
     const Eigen::VectorXd b = rhs.head(free) + strips_.transpose() * rhs.tail(3 * strips);
-    Eigen::VectorXd y = y0;
-    Eigen::VectorXd r = b - apply(y);
-    Eigen::VectorXd z = factor.solve(r);
-    Eigen::VectorXd p = z;
-    double rz = r.dot(z);
     // Solved to kCgTolerance of the right-hand side, or kCgReduction of the residual at y0.
-    const double bound = std::max(kCgTolerance * b.norm(), kCgReduction * r.norm());
-    for (int step = 0; step < kMaxCgSteps && r.norm() > bound; ++step) {
-      const Eigen::VectorXd hp = apply(p);
-      const double curvature = p.dot(hp);
-      if (!(curvature > 0.0)) break;
-      const double alpha = rz / curvature;
-      y += alpha * p;
-      r -= alpha * hp;
-      z = factor.solve(r);
-      const double next = r.dot(z);
-      p = z + (next / rz) * p;
-      rz = next;
-    }
-    return y;
+    return conjugateGradients(
+        apply, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(factor.solve(r)); }, b, y0,
+        kCgTolerance, kCgReduction);
   }
 
   VertexFrameModel model_;

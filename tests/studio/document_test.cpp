@@ -5,7 +5,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -14,19 +13,14 @@
 #include "http_error.hpp"
 #include "journal.hpp"
 #include "pdesurf/model_io.hpp"
+#include "support/cli_run.hpp"
 
 namespace pdesurf::studio {
 namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
+using testing::readText;
 
 /// A temporary root folder holding a copy of an example, removed afterwards.
 class DocumentTest : public ::testing::Test {
