@@ -4,8 +4,9 @@
 // a copy that it updates as it sends edits (so a drag is smooth) and reloads after undo,
 // redo, open and any refused edit.
 import './style.css';
-import { mountAnalysis } from './analysis';import { mountDragTool } from './drag';
+import { mountAnalysis } from './analysis';
 import { mountCurveEditor } from './curve-editor';
+import { mountDragTool } from './drag';
 import { mountKeys } from './keys';
 import { mountModeller } from './modeller';
 import { mountPanel } from './panel';
@@ -15,8 +16,10 @@ import { mountStatusBar } from './statusbar';
 import { Studio } from './studio';
 import { mountToolbar } from './toolbar';
 import { mountTransform } from './transform';
+import { makeTransformGrids } from './transform-grid';
 import { mountViews } from './views';
 
+makeTransformGrids(); // before the parts that read its boxes mount
 const studio = new Studio();
 mountStatusBar(studio);
 mountSceneSync(studio);
