@@ -1,26 +1,24 @@
-// Fitting a vertex-frame model to a mesh: closest points both ways (CGAL AABB trees), a
+// Fitting a vertex-frame model to a mesh: closest points both ways (closest_pairs.cpp), a
 // sparse linear least-squares step in the vertex positions with the strips' cubic
-// coefficients tied to them exactly, and a line search on the measured RMS (docs/rebuild.md).
+// coefficients tied to them exactly, and a line search on the measured RMS; with the shape fit
+// also each frame's force and a1, a2 (shape_step.cpp; docs/rebuild.md).
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <map>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <utility>
 
 #include <fmt/format.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include "fit/closest_pairs.hpp"
+#include "fit/conjugate_gradients.hpp"
 #include "fit/linear_surface.hpp"
+#include "fit/shape_step.hpp"
 #include "numerics/force_shape.hpp"
-#include "numerics/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
 
 namespace pdesurf {
@@ -31,33 +29,16 @@ double FitMeasure::rms() const {
 
 namespace {
 
+using fit::Evaluation;
 using fit::LinearSurface;
+using fit::Pair;
 using fit::PointWeights;
-
-using detail::Point;
-using detail::toPoint;
-using detail::toVec;
-using detail::Tree;
-using detail::Triangle;
-using detail::Triangles;
+using fit::SampleGrid;
+using fit::Target;
 
 /// Below this RMS relative to the diagonal the fit is exact to rounding (float meshes
 /// carry 6e-8 relative): nothing is left to lower.
 constexpr double kExactRms = 1e-14;
-
-/// Gauss–Newton steps that move a mesh vertex's foot point from the sample triangle's
-/// estimate onto the patch: the estimate is within a sample cell, so a few suffice.
-constexpr int kProjectionSteps = 4;
-
-/// A foot point whose barycentric coordinate opposite a boundary edge is below this lies on
-/// the boundary: its pair counts the whole distance, not the normal part alone.
-constexpr double kOnBoundary = 1e-9;
-
-/// A foot point whose smallest barycentric coordinate is below this lies on an edge or a
-/// corner of its triangle (where the distance's direction, not the triangle's normal, is
-/// the pair's normal); a sample nearer than this (relative to the diagonal) keeps the
-/// triangle's normal.
-constexpr double kOnEdge = 1e-9;
 
 /// The tangential weight adapts as a trust region does: divided by 10 after a full step,
 /// multiplied by 10 (up to 1, plain distances) after a shortened one, never below this
@@ -71,98 +52,6 @@ constexpr std::uint32_t kHalvingsBeforeDamping = 1;
 
 /// Full steps in a row (none raising the weight) before the tangential weight is lowered.
 constexpr std::uint32_t kCleanStepsToLower = 2;
-
-/// The barycentric coordinates of p (in the triangle's plane) in triangle a b c.
-Eigen::Vector3d barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double total = n.squaredNorm();
-  if (!(total > 0.0)) return {1.0, 0.0, 0.0};
-  const double lb = (p - a).cross(c - a).dot(n) / total;
-  const double lc = (b - a).cross(p - a).dot(n) / total;
-  return {1.0 - lb - lc, lb, lc};
-}
-
-/// The target mesh: its triangles with area in an AABB tree, its vertices as samples.
-struct Target {
-  Triangles triangles;
-  std::vector<Vec3> normals;  ///< unit normal per triangle
-  /// Per triangle, bit k: its edge opposite corner k is on the mesh's boundary.
-  std::vector<std::uint8_t> boundary;
-  Tree tree;
-  std::vector<Vec3> samples;    ///< the vertices that triangles with area use
-  std::vector<double> weights;  ///< a third of the area of their triangles, summing to 1
-  double diagonal = 0.0;
-
-  explicit Target(const Mesh& mesh) {
-    auto vertex = [&](std::uint32_t v) { return detail::meshVertex(mesh, v); };
-    std::vector<double> area(mesh.vertexCount(), 0.0);
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    double total = 0.0;
-    // Edges of one triangle with area are the boundary.
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse;
-    std::vector<std::size_t> kept;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-      const std::uint32_t* i = &mesh.indices[3 * t];
-      const Vec3 a = vertex(i[0]), b = vertex(i[1]), c = vertex(i[2]);
-      if (!((b - a).cross(c - a).norm() > 0.0)) continue;
-      kept.push_back(t);
-      for (int k = 0; k < 3; ++k) ++edgeUse[std::minmax(i[(k + 1) % 3], i[(k + 2) % 3])];
-    }
-    for (std::size_t t : kept) {
-      const std::uint32_t* i = &mesh.indices[3 * t];
-      const Vec3 a = vertex(i[0]), b = vertex(i[1]), c = vertex(i[2]);
-      const double at = 0.5 * (b - a).cross(c - a).norm();
-      std::uint8_t bits = 0;
-      for (int k = 0; k < 3; ++k)
-        if (edgeUse[std::minmax(i[(k + 1) % 3], i[(k + 2) % 3])] == 1) bits |= 1u << k;
-      boundary.push_back(bits);
-      triangles.emplace_back(toPoint(a), toPoint(b), toPoint(c));
-      normals.push_back((b - a).cross(c - a).normalized());
-      for (int k = 0; k < 3; ++k) {
-        area[i[k]] += at / 3.0;
-        lo = lo.cwiseMin(vertex(i[k]));
-        hi = hi.cwiseMax(vertex(i[k]));
-      }
-      total += at;
-    }
-    if (triangles.empty())
-      throw std::invalid_argument(
-          fmt::format("the mesh has no triangle with area ({} triangles)", mesh.triangleCount()));
-    for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v)
-      if (area[v] > 0.0) {
-        samples.push_back(vertex(v));
-        weights.push_back(area[v] / total);
-      }
-    diagonal = (hi - lo).norm();
-    tree.insert(triangles.cbegin(), triangles.cend());
-    tree.build();
-    tree.accelerate_distance_queries();
-  }
-};
-
-/// A closest-point pair: the surface point S(frame, u, v) should be at `target`.
-/// The squared distance counted is (S - target)ᵀ M (S - target) with
-/// M = n nᵀ + tangentialWeight (I - n nᵀ): along the normal n in full, along the tangent
-/// plane a little.
-struct Pair {
-  std::uint32_t frame = 0;
-  double u = 0.0, v = 0.0;
-  Vec3 target = Vec3::Zero();
-  Vec3 normal = Vec3::Zero();  ///< unit, or zero where none is known (then M = I)
-  double weight = 0.0;
-  std::int64_t sample = -1;  ///< the surface sample (weights precomputed), or -1: a mesh vertex's
-};
-
-/// The pairs at one surface and the distances they measure.
-struct Evaluation {
-  std::vector<Pair> pairs;
-  FitMeasure measure;
-  std::vector<std::uint32_t> foldsPerFrame;  ///< folded surface samples per frame
-  /// Per surface sample, the mesh triangle its closest point is on; per mesh vertex, the
-  /// cell of the surface's sample grid its closest point is on: the next evaluation's
-  /// hints (a query that starts from a near point prunes the tree at once).
-  std::vector<std::uint32_t> meshTriangle, surfaceCell;
-};
 
 /// The automatic sample count: about as many surface samples as mesh vertices (the two
 /// directions then weigh alike in the work), from a 4 × 4 grid a patch (enough to see its
@@ -178,38 +67,6 @@ constexpr double kCgTolerance = 1e-13;
 /// near the answer the residual is itself small, so the bound tightens as the fit converges
 /// (the mannequin devil's 32 × 32 grid: half the CG steps, the same final RMS).
 constexpr double kCgReduction = 1e-4;
-/// At most this many CG steps a solve (the preconditioner leaves the strips' coupling
-/// only: a few dozen steps in practice); then the best iterate is used.
-constexpr int kMaxCgSteps = 400;
-
-/// Preconditioned conjugate gradients on A x = b from x (apply: v ↦ A v, A symmetric;
-/// precondition: r ↦ M⁻¹ r), until the residual is within `tolerance` of |b| or within
-/// `reduction` of the starting residual, kMaxCgSteps at most; a direction of non-positive
-/// curvature (A not positive there, or rounding) ends it.
-template <class Apply, class Precondition>
-Eigen::VectorXd conjugateGradients(const Apply& apply, const Precondition& precondition,
-                                   const Eigen::VectorXd& b, Eigen::VectorXd x, double tolerance,
-                                   double reduction) {
-  Eigen::VectorXd r = b - apply(x);
-  Eigen::VectorXd z = precondition(r);
-  Eigen::VectorXd p = z;
-  double rz = r.dot(z);
-  const double bound = std::max(tolerance * b.norm(), reduction * r.norm());
-  for (int step = 0; step < kMaxCgSteps && r.norm() > bound; ++step) {
-    const Eigen::VectorXd hp = apply(p);
-    const double curvature = p.dot(hp);
-    if (!(curvature > 0.0)) break;
-    const double alpha = rz / curvature;
-    x += alpha * p;
-    r -= alpha * hp;
-    z = precondition(r);
-    const double next = r.dot(z);
-    p = z + (next / rz) * p;
-    rz = next;
-  }
-  return x;
-}
-
 /// A step may fold over up to this share of the samples even where the surface had fewer
 /// folded ones: at a cliff or near the mesh's boundary a sample's closest point can lie on
 /// a triangle that faces away, which is no fold of the surface, and holding every such
@@ -220,23 +77,12 @@ constexpr double kFoldAllowance = 0.005;
 /// and the rest of the step is tried again, at most this many times a step.
 constexpr int kMaxFoldRetries = 4;
 
-constexpr double kPi = std::numbers::pi;
-
 /// The a1, a2 step of the shape fit (parameterStep): Levenberg–Marquardt damping λ, relative
 /// to the diagonal of the Gauss–Newton matrix, starting here, divided by 10 after a whole
 /// step and multiplied by 10 after a halved or failed one, within these bounds ...
 constexpr double kStartParameterDamping = 1e-2;
 constexpr double kMinParameterDamping = 1e-6;
 constexpr double kMaxParameterDamping = 1e6;
-/// ... plus this fraction of the largest diagonal entry everywhere: parameters that move no
-/// strip value (a frame's a1 and a2 scaled together on strips of one frame, a strip value
-/// pinned to 0) then stay, and the system is positive definite.
-constexpr double kParameterFloor = 1e-9;
-/// Its conjugate gradients stop when the residual is this small relative to the gradient:
-/// the step need not be more exact than its linearisation.
-constexpr double kParameterCgTolerance = 1e-6;
-/// No ln a1 or ln a2 changes by more than this in one step (a factor e).
-constexpr double kMaxLogStep = 1.0;
 /// Halvings of the a1, a2 step tried before it is given up for this iteration.
 constexpr std::uint32_t kParameterHalvings = 3;
 
@@ -249,19 +95,12 @@ std::uint32_t automaticSamples(std::size_t meshSamples, std::size_t frames) {
 class Fitter {
  public:
   Fitter(const VertexFrameModel& start, const Mesh& target, const FitOptions& options)
-      : model_(start), target_(target), options_(options) {
-    const std::uint32_t g = options.samplesPerSide != 0
-                                ? options.samplesPerSide
-                                : automaticSamples(target_.samples.size(), start.frames.size());
-    samplesPerSide_ = g;
-    for (std::uint32_t j = 0; j < g; ++j)
-      for (std::uint32_t i = 0; i < g; ++i) {
-        // Trapezoid weights: a border sample stands for half a cell, a corner for a quarter.
-        const double wu = (i == 0 || i + 1 == g) ? 0.5 : 1.0;
-        const double wv = (j == 0 || j + 1 == g) ? 0.5 : 1.0;
-        grid_.push_back(
-            {static_cast<double>(i) / (g - 1), static_cast<double>(j) / (g - 1), wu * wv});
-      }
+      : model_(start),
+        target_(target),
+        options_(options),
+        grid_(options.samplesPerSide != 0
+                  ? options.samplesPerSide
+                  : automaticSamples(target_.samples.size(), start.frames.size())) {
     buildLaplacian();
     tangentialWeight_ = options.tangentialWeight;
     rebuildLinear();
@@ -354,10 +193,6 @@ class Fitter {
     }
   }
 
-  struct GridPoint {
-    double u, v, weight;
-  };
-
   void report(FitResult& result, const FitIteration& iteration) const {
     result.iterations.push_back(iteration);
     if (options_.onIteration) options_.onIteration(iteration);
@@ -375,10 +210,11 @@ class Fitter {
       linear_ = std::make_unique<LinearSurface>(model_);
     }
     const std::size_t nFrames = model_.frames.size();
-    gridWeights_.resize(nFrames * grid_.size());
+    const std::vector<SampleGrid::Point>& grid = grid_.points;
+    gridWeights_.resize(nFrames * grid.size());
     for (std::uint32_t k = 0; k < nFrames; ++k)
-      for (std::size_t s = 0; s < grid_.size(); ++s)
-        gridWeights_[k * grid_.size() + s] = linear_->weights(k, grid_[s].u, grid_[s].v);
+      for (std::size_t s = 0; s < grid.size(); ++s)
+        gridWeights_[k * grid.size() + s] = linear_->weights(k, grid[s].u, grid[s].v);
     std::vector<Eigen::Triplet<double>> t;
     for (int c = 0; c < 3; ++c) {
       const auto& rows = linear_->stripRows(c);
@@ -406,7 +242,8 @@ class Fitter {
       y.segment<3>(3 * static_cast<Eigen::Index>(j)) = model_.vertices[j];
     if (shape_)
       for (std::size_t k = 0; k < model_.frames.size(); ++k)
-        y.segment<3>(3 * static_cast<Eigen::Index>(n + k)) = forceAmplitude(model_.frames[k]);
+        y.segment<3>(3 * static_cast<Eigen::Index>(n + k)) =
+            fit::wholeFrameForceAmplitude(model_.frames[k]);
     return y;
   }
 
@@ -418,27 +255,9 @@ class Fitter {
       m.vertices[j] = y.segment<3>(3 * static_cast<Eigen::Index>(j));
     if (shape_)
       for (std::size_t k = 0; k < m.frames.size(); ++k)
-        setForceAmplitude(m.frames[k], y.segment<3>(3 * static_cast<Eigen::Index>(n + k)));
+        fit::setWholeFrameForceAmplitude(m.frames[k],
+                                         y.segment<3>(3 * static_cast<Eigen::Index>(n + k)));
     return m;
-  }
-
-  /// The amplitude of a frame's whole-frame force: its particular solution is
-  /// k sin(πu) sin(πv) with k = -f0 / (π² (a1 + a2)) (docs/derivations.md §1.5, Lu = Lv = 1),
-  /// computed as the solver computes it (forceTerm, src/vertex_frames/solve.cpp).
-  static Vec3 forceAmplitude(const Frame& f) {
-    if (f.forces.empty()) return Vec3::Zero();
-    Vec3 k = Vec3::Zero();
-    for (int c = 0; c < 3; ++c)
-      if (f.forces[0].f0[c] != 0.0) k[c] = -f.forces[0].f0[c] / (kPi * kPi * (f.a1[c] + f.a2[c]));
-    return k;
-  }
-
-  /// Sets the frame's whole-frame force to amplitude k for its a1, a2 (none where k is 0).
-  static void setForceAmplitude(Frame& f, const Vec3& k) {
-    f.forces.clear();
-    if (k == Vec3::Zero()) return;
-    const Vec3 f0 = -kPi * kPi * k.cwiseProduct(f.a1 + f.a2);
-    f.forces.push_back({f0, Region{}});
   }
 
   /// The shape phase: the forces join the unknowns (their f0 from now on follows a1 and
@@ -448,92 +267,18 @@ class Fitter {
     rebuildLinear();
   }
 
-  /// One damped Gauss–Newton step in ln a1 and ln a2 of every frame (per component) on the
-  /// pairs of `current`, with the vertices and forces' amplitudes fixed; taken whole, else
-  /// halved, only where the measured RMS falls. Returns the fraction taken (0: none).
-  ///
-  /// a1 and a2 move the surface only through the strip values X (the forces keep their
-  /// amplitude), so S_i = S_i⁰ + A_i ΔX and ΔX ≈ G Δθ with G = linear_->parameterJacobian.
-  /// The squared distances are then ½ Δθᵀ (Gᵀ K G) Δθ + (Gᵀ g)ᵀ Δθ + const with
-  /// K = Σ w A_iᵀ M A_i and g = Σ w A_iᵀ M (S_i⁰ - t_i), both over the strips (small and
-  /// sparse); Gᵀ K G couples every frame of two crossing strips, so it is never formed:
-  /// Jacobi-preconditioned conjugate gradients apply it as products with G, K and Gᵀ.
-  /// Levenberg–Marquardt damping λ diag(GᵀKG) adapts as the tangential weight does.
+  /// One damped Gauss–Newton step in ln a1 and ln a2 (fit::parameterDirection) from
+  /// `current`, taken whole, else halved, only where the measured RMS falls. Returns the
+  /// fraction taken (0: none). Its Levenberg–Marquardt damping adapts as the tangential
+  /// weight does.
   double parameterStep(Evaluation& current) {
-    const FrameTopology& topo = linear_->topology();
-    const auto nFrames = static_cast<std::uint32_t>(model_.frames.size());
-    const auto strips3 = 3 * static_cast<Eigen::Index>(topo.stripCount);
-    const Eigen::Index params = 6 * static_cast<Eigen::Index>(nFrames);
-    if (strips3 == 0) return 0.0;
-    const VertexFrameSurface surface = solve(model_, linear_->sharedTopology());
-    const Eigen::SparseMatrix<double> g = linear_->parameterJacobian(model_.vertices);
-    using Block = Eigen::Matrix<double, 6, 6>;
-    std::vector<Block> blocks(nFrames, Block::Zero());
-    Eigen::VectorXd gradientX = Eigen::VectorXd::Zero(strips3);
-    const double mu = tangentialWeight_;
-    for (const Pair& p : current.pairs) {
-      const double b0 = topo.parity[p.frame][0] * fit::cubicShape(p.u);
-      const double b1 = topo.parity[p.frame][1] * fit::cubicShape(p.v);
-      const Eigen::Matrix3d m =
-          mu * Eigen::Matrix3d::Identity() + (1.0 - mu) * p.normal * p.normal.transpose();
-      const Vec3 mr = m * (surface.patches[p.frame].position(p.u, p.v) - p.target);
-      Block& block = blocks[p.frame];
-      block.block<3, 3>(0, 0) += (p.weight * b0 * b0) * m;
-      block.block<3, 3>(0, 3) += (p.weight * b0 * b1) * m;
-      block.block<3, 3>(3, 0) += (p.weight * b1 * b0) * m;
-      block.block<3, 3>(3, 3) += (p.weight * b1 * b1) * m;
-      gradientX.segment<3>(3 * Eigen::Index{topo.strip[p.frame][0]}) += p.weight * b0 * mr;
-      gradientX.segment<3>(3 * Eigen::Index{topo.strip[p.frame][1]}) += p.weight * b1 * mr;
-    }
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(std::size_t{nFrames} * 36);
-    for (std::uint32_t k = 0; k < nFrames; ++k)
-      for (int i = 0; i < 6; ++i)
-        for (int j = 0; j < 6; ++j)
-          triplets.emplace_back(3 * Eigen::Index{topo.strip[k][i / 3]} + i % 3,
-                                3 * Eigen::Index{topo.strip[k][j / 3]} + j % 3, blocks[k](i, j));
-    Eigen::SparseMatrix<double> kx(strips3, strips3);
-    kx.setFromTriplets(triplets.begin(), triplets.end());
-    // diag(GᵀKG): a parameter moves at most its frame's two strips (two entries a column).
-    Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(params);
-    for (Eigen::Index col = 0; col < g.outerSize(); ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator a(g, col); a; ++a)
-        for (Eigen::SparseMatrix<double>::InnerIterator b(g, col); b; ++b)
-          diagonal[col] += a.value() * kx.coeff(a.row(), b.row()) * b.value();
-    const double largest = diagonal.maxCoeff();
-    if (!(largest > 0.0)) return 0.0;
-    const Eigen::VectorXd damped =
-        (1.0 + parameterDamping_) * diagonal.array() + kParameterFloor * largest;
-    const Eigen::VectorXd rhs = -(g.transpose() * gradientX);
-    auto apply = [&](const Eigen::VectorXd& x) {
-      const Eigen::VectorXd gx = g * x;
-      return Eigen::VectorXd(g.transpose() * (kx * gx) +
-                             parameterDamping_ * diagonal.cwiseProduct(x) +
-                             kParameterFloor * largest * x);
-    };
-    Eigen::VectorXd delta = conjugateGradients(
-        apply, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(r.cwiseQuotient(damped)); },
-        rhs, Eigen::VectorXd::Zero(params), kParameterCgTolerance, 0.0);
-    // A trust region: no parameter changes by more than a factor e in one step.
-    const double largestChange = delta.cwiseAbs().maxCoeff();
-    if (!(largestChange > 0.0) || !std::isfinite(largestChange)) return 0.0;
-    if (largestChange > kMaxLogStep) delta *= kMaxLogStep / largestChange;
-
+    const std::optional<Eigen::VectorXd> direction =
+        fit::parameterDirection(*linear_, model_, current, tangentialWeight_, parameterDamping_);
+    if (!direction) return 0.0;
     const double rms = current.measure.rms();
     for (std::uint32_t h = 0; h <= kParameterHalvings; ++h) {
       const double fraction = std::ldexp(1.0, -static_cast<int>(h));
-      VertexFrameModel candidate = model_;
-      for (std::uint32_t k = 0; k < nFrames; ++k) {
-        Frame& f = candidate.frames[k];
-        const Vec3 amplitude = forceAmplitude(f);
-        for (int w = 0; w < 2; ++w) {
-          Vec3& a = w == 0 ? f.a1 : f.a2;
-          for (int c = 0; c < 3; ++c)
-            a[c] = std::clamp(a[c] * std::exp(fraction * delta[6 * k + 3 * w + c]),
-                              kMinShapeParameter, kMaxShapeParameter);
-        }
-        setForceAmplitude(f, amplitude);
-      }
+      VertexFrameModel candidate = fit::withParameterStep(model_, *direction, fraction);
       Evaluation next = evaluate(candidate, &current);
       if (!(next.measure.rms() < rms)) continue;
       if (options_.preventFolds && next.measure.foldedSamples > foldLimit(current)) continue;
@@ -546,6 +291,12 @@ class Fitter {
     }
     parameterDamping_ = std::min(kMaxParameterDamping, 10.0 * parameterDamping_);
     return 0.0;
+  }
+
+  /// The closest-point pairs of `model`'s surface and the mesh (fit::closestPairs), from the
+  /// closest points of `hints` (an evaluation of a near surface) when given.
+  Evaluation evaluate(const VertexFrameModel& model, const Evaluation* hints = nullptr) const {
+    return fit::closestPairs(solve(model, linear_->sharedTopology()), grid_, target_, hints);
   }
 
   /// The most folded samples a step from `current` may leave (FitOptions::preventFolds).
@@ -606,192 +357,6 @@ class Fitter {
     }
     laplacian_.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
     laplacian_.setFromTriplets(triplets.begin(), triplets.end());
-  }
-
-  /// Samples the surface of `model`, pairs the samples with the mesh and the mesh's
-  /// vertices with the surface, measures the distances and counts the folded samples.
-  /// The closest points are found in parallel, each into its own slot, and summed in order
-  /// afterwards: the same result for any number of threads. With `hints` (the evaluation of
-  /// a surface near this one, with the same layout) each query starts from the triangle its
-  /// closest point was on there: the same closest points, found sooner.
-  Evaluation evaluate(const VertexFrameModel& model, const Evaluation* hints = nullptr) const {
-    const VertexFrameSurface surface = solve(model, linear_->sharedTopology());
-    const std::uint32_t g = samplesPerSide_;
-    const auto nFrames = static_cast<std::uint32_t>(surface.patches.size());
-    const std::size_t perFrame = grid_.size();
-    Evaluation e;
-    e.pairs.reserve(std::size_t{nFrames} * perFrame + target_.samples.size());
-    const double diag = target_.diagonal > 0.0 ? target_.diagonal : 1.0;
-
-    // Surface samples -> mesh, weighted by the area they stand for.
-    const std::size_t count = std::size_t{nFrames} * perFrame;
-    std::vector<Vec3> positions(count);
-    std::vector<double> cosine(count), distances(count);
-    e.pairs.resize(count);
-    e.meshTriangle.resize(count);
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nFrames), [&](const auto& range) {
-      for (std::uint32_t k = range.begin(); k != range.end(); ++k) {
-        const double flip = surface.topology->flipped[k] ? -1.0 : 1.0;
-        for (std::size_t s = 0; s < perFrame; ++s) {
-          const std::size_t i = k * perFrame + s;
-          const GridPoint& gp = grid_[s];
-          const SurfacePoint sp = surface.patches[k].evaluate(gp.u, gp.v);
-          positions[i] = sp.p;
-          const auto hit =
-              hints ? target_.tree.closest_point_and_primitive(
-                          toPoint(sp.p), {toPoint(hints->pairs[i].target),
-                                          target_.triangles.cbegin() + hints->meshTriangle[i]})
-                    : target_.tree.closest_point_and_primitive(toPoint(sp.p));
-          const auto t = static_cast<std::size_t>(hit.second - target_.triangles.cbegin());
-          e.meshTriangle[i] = static_cast<std::uint32_t>(t);
-          const Vec3 foot = toVec(hit.first);
-          const Vec3 normal = sp.du.cross(sp.dv);
-          const double length = normal.norm();
-          cosine[i] = length > 0.0 ? flip * normal.dot(target_.normals[t]) / length : 0.0;
-          Pair pair{k,
-                    gp.u,
-                    gp.v,
-                    foot,
-                    target_.normals[t],
-                    gp.weight * length,
-                    static_cast<std::int64_t>(i)};
-          const Triangle& tri = target_.triangles[t];
-          const Eigen::Vector3d l = barycentric(foot, toVec(tri[0]), toVec(tri[1]), toVec(tri[2]));
-          // A foot on an edge or a corner of the triangle is as near to its neighbours: the
-          // triangle's own normal is one of several, chosen by how the tree breaks the tie.
-          // The direction from the foot to the sample is the distance's gradient there, the
-          // same whichever triangle the tree returns.
-          const Vec3 away = sp.p - foot;
-          if (l.minCoeff() < kOnEdge && away.norm() > kOnEdge * target_.diagonal)
-            pair.normal = away.normalized();
-          for (int c = 0; c < 3; ++c)
-            if ((target_.boundary[t] >> c & 1u) && l[c] < kOnBoundary) pair.normal.setZero();
-          distances[i] = (foot - sp.p).norm();
-          e.pairs[i] = pair;
-        }
-      }
-    });
-    double totalArea = 0.0, agreement = 0.0;
-    for (std::size_t i = 0; i < count; ++i) {
-      totalArea += e.pairs[i].weight;
-      agreement += e.pairs[i].weight * cosine[i];
-    }
-    if (!(totalArea > 0.0)) throw std::invalid_argument("the model's surface has no area");
-    // Folds: samples that disagree with the orientation most of the surface agrees on.
-    const double orientation = agreement < 0.0 ? -1.0 : 1.0;
-    e.foldsPerFrame.assign(nFrames, 0);
-    double sum = 0.0, sumSquares = 0.0, max = 0.0;
-    for (std::size_t i = 0; i < count; ++i) {
-      e.pairs[i].weight /= totalArea;
-      sum += e.pairs[i].weight * distances[i];
-      sumSquares += e.pairs[i].weight * distances[i] * distances[i];
-      max = std::max(max, distances[i]);
-      if (orientation * cosine[i] < 0.0) ++e.foldsPerFrame[e.pairs[i].frame];
-    }
-    e.measure.samples = static_cast<std::uint32_t>(count);
-    for (std::uint32_t f : e.foldsPerFrame) e.measure.foldedSamples += f;
-    e.measure.rmsToMesh = std::sqrt(sumSquares) / diag;
-    e.measure.meanToMesh = sum / diag;
-    e.measure.maxToMesh = max / diag;
-
-    // Mesh vertices -> surface: the closest point on the sample grids' triangles, then
-    // Gauss–Newton on that patch from there.
-    Triangles cells;
-    cells.reserve(std::size_t{nFrames} * 2 * (g - 1) * (g - 1));
-    for (std::uint32_t k = 0; k < nFrames; ++k)
-      for (std::uint32_t j = 0; j + 1 < g; ++j)
-        for (std::uint32_t i = 0; i + 1 < g; ++i) {
-          const Vec3* p = &positions[k * perFrame];
-          const Point a = toPoint(p[j * g + i]), b = toPoint(p[j * g + i + 1]);
-          const Point c = toPoint(p[(j + 1) * g + i + 1]), d = toPoint(p[(j + 1) * g + i]);
-          cells.emplace_back(a, b, c);
-          cells.emplace_back(a, c, d);
-        }
-    Tree onSurface(cells.cbegin(), cells.cend());
-    onSurface.build();
-    // Without hints, a k-d tree of the cells' points starts each query.
-    if (!hints) onSurface.accelerate_distance_queries();
-    const double cell = 1.0 / (g - 1);
-    const FrameTopology& topo = linear_->topology();
-    const std::size_t meshCount = target_.samples.size();
-    std::vector<double> meshDistances(meshCount);
-    e.pairs.resize(count + meshCount);
-    e.surfaceCell.resize(meshCount);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, meshCount), [&](const auto& range) {
-      for (std::size_t m = range.begin(); m != range.end(); ++m) {
-        const Vec3& x = target_.samples[m];
-        const std::uint32_t hint = hints ? hints->surfaceCell[m] : 0;
-        const auto closest = hints ? onSurface.closest_point_and_primitive(
-                                         toPoint(x), {cells[hint].vertex(0), cells.cbegin() + hint})
-                                   : onSurface.closest_point_and_primitive(toPoint(x));
-        const auto t = static_cast<std::size_t>(closest.second - cells.cbegin());
-        e.surfaceCell[m] = static_cast<std::uint32_t>(t);
-        const auto k = static_cast<std::uint32_t>(t / (2 * (g - 1) * (g - 1)));
-        const std::size_t local = t % (2 * (g - 1) * (g - 1));
-        const std::size_t i = (local / 2) % (g - 1), j = (local / 2) / (g - 1);
-        // The cell's (u, v) at the closest point, from its barycentric coordinates.
-        const Triangle& tri = cells[t];
-        const Vec3 a = toVec(tri[0]), b = toVec(tri[1]), c = toVec(tri[2]);
-        const Vec3 pc = toVec(closest.first);
-        const double total = (b - a).cross(c - a).norm();
-        double lb = 0.0, lc = 0.0;
-        if (total > 0.0) {
-          lb = (pc - a).cross(c - a).norm() / total;
-          lc = (b - a).cross(pc - a).norm() / total;
-        }
-        // Corners in (u, v): a = (i, j); first triangle b = (i+1, j), c = (i+1, j+1);
-        // second triangle b = (i+1, j+1), c = (i, j+1).
-        double du, dv;
-        if (local % 2 == 0)
-          du = lb + lc, dv = lc;
-        else
-          du = lb, dv = lb + lc;
-        double u = (static_cast<double>(i) + du) * cell, v = (static_cast<double>(j) + dv) * cell;
-        const VertexFramePatch& patch = surface.patches[k];
-        double best = (patch.position(u, v) - x).squaredNorm();
-        double bu = u, bv = v;
-        for (int step = 0; step < kProjectionSteps; ++step) {
-          const SurfacePoint sp = patch.evaluate(u, v);
-          const Vec3 r = sp.p - x;
-          Eigen::Matrix2d jtj;
-          jtj << sp.du.dot(sp.du), sp.du.dot(sp.dv), sp.du.dot(sp.dv), sp.dv.dot(sp.dv);
-          const Eigen::Vector2d jtr(sp.du.dot(r), sp.dv.dot(r));
-          if (!(jtj.determinant() > 0.0)) break;
-          const Eigen::Vector2d delta = jtj.ldlt().solve(-jtr);
-          u = std::clamp(u + delta.x(), 0.0, 1.0);
-          v = std::clamp(v + delta.y(), 0.0, 1.0);
-          const double d2 = (patch.position(u, v) - x).squaredNorm();
-          if (d2 < best) best = d2, bu = u, bv = v;
-        }
-        meshDistances[m] = std::sqrt(best);
-        const SurfacePoint foot = patch.evaluate(bu, bv);
-        const Vec3 normal = foot.du.cross(foot.dv);
-        const double length = normal.norm();
-        // A foot on a side no other frame shares is on the surface's boundary.
-        bool onBoundary = false;
-        const std::array<bool, 4> atSide = {bv == 0.0, bu == 1.0, bv == 1.0, bu == 0.0};
-        for (int side = 0; side < 4; ++side)
-          if (atSide[side] && topo.edges[topo.edgeOf[k][side]].sideCount == 1) onBoundary = true;
-        e.pairs[count + m] = {k,
-                              bu,
-                              bv,
-                              x,
-                              length > 0.0 && !onBoundary ? Vec3(normal / length) : Vec3::Zero(),
-                              target_.weights[m],
-                              -1};
-      }
-    });
-    sum = sumSquares = max = 0.0;
-    for (std::size_t m = 0; m < meshCount; ++m) {
-      const double w = target_.weights[m], dist = meshDistances[m];
-      sum += w * dist;
-      sumSquares += w * dist * dist;
-      max = std::max(max, dist);
-    }
-    e.measure.rmsToModel = std::sqrt(sumSquares) / diag;
-    e.measure.meanToModel = sum / diag;
-    e.measure.maxToModel = max / diag;
-    return e;
   }
 
   /// The unknowns y that minimise the paired squared distances plus the smoothness term,
@@ -897,7 +462,7 @@ class Fitter {
     };
     const Eigen::VectorXd b = rhs.head(free) + strips_.transpose() * rhs.tail(3 * strips);
     // Solved to kCgTolerance of the right-hand side, or kCgReduction of the residual at y0.
-    return conjugateGradients(
+    return fit::conjugateGradients(
         apply, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(factor.solve(r)); }, b, y0,
         kCgTolerance, kCgReduction);
   }
@@ -905,8 +470,7 @@ class Fitter {
   VertexFrameModel model_;
   Target target_;
   FitOptions options_;
-  std::uint32_t samplesPerSide_ = 9;
-  std::vector<GridPoint> grid_;
+  SampleGrid grid_;  ///< the surface samples on every patch
   std::unique_ptr<LinearSurface> linear_;
   std::vector<PointWeights> gridWeights_;  ///< per frame, per grid point
   /// The strip values as rows on the unknowns, 3 × strips by 3 × vertices (component c of

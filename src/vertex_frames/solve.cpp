@@ -1,6 +1,5 @@
 // Closed-form patches and strip solvers (seed 000 §3; docs/derivations.md §1.2–§1.4).
 #include <cmath>
-#include <numbers>
 #include <queue>
 
 #include <fmt/format.h>
@@ -11,8 +10,6 @@
 namespace pdesurf {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 std::array<Vec3, 8> framePoints(const VertexFrameModel& model, std::uint32_t k) {
   std::array<Vec3, 8> p;
@@ -83,10 +80,7 @@ ForceTerm forceTerm(const Frame& f, const Vec3& f0, const Region& r) {
   const double lu = r.u1 - r.u0, lv = r.v1 - r.v0;
   ForceTerm t;
   t.region = r;
-  for (int c = 0; c < 3; ++c) {
-    if (f0[c] == 0.0) continue;  // no force in this component: nothing to solve
-    t.k[c] = -f0[c] / (kPi * kPi * (f.a1[c] / (lu * lu) + f.a2[c] / (lv * lv)));
-  }
+  for (int c = 0; c < 3; ++c) t.k[c] = detail::forceAmplitude(f0[c], f.a1[c], f.a2[c], lu, lv);
   return t;
 }
 
