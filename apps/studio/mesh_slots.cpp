@@ -53,9 +53,20 @@ MeshAnswer MeshSlots::mesh(ModelSession& session, std::uint64_t revision, std::u
   s.sent = mesh;  // what the client now has (copies reuse sent's buffers)
   s.sentLayout = layout;
   s.sentId = ++counter_;
+  s.sentRevision = revision;
+  s.sentOptions = options;
   out.id = s.sentId;
   out.base = delta ? base : 0;
   return out;
+}
+
+const Mesh* MeshSlots::sent(std::uint32_t resolution, std::uint64_t revision,
+                            const SolveOptions& options) const {
+  for (const Slot& s : slots_)
+    if (s.resolution == resolution && s.sentId != 0 && s.sentRevision == revision &&
+        s.sentOptions.solver == options.solver && s.sentOptions.seedFrame == options.seedFrame)
+      return &s.sent;
+  return nullptr;
 }
 
 }  // namespace pdesurf::studio

@@ -35,6 +35,13 @@ class MeshSlots {
   MeshAnswer mesh(ModelSession& session, std::uint64_t revision, std::uint32_t resolution,
                   std::uint64_t base, const SolveOptions& options);
 
+  /// The last mesh sent at `resolution` if it is the surface of `revision` solved with
+  /// `options` (revisions are never reused while the server runs), else nullptr: the routes
+  /// that describe the page's mesh (its triangles' patches, its curvature) read it instead of
+  /// tessellating the model again.
+  const Mesh* sent(std::uint32_t resolution, std::uint64_t revision,
+                   const SolveOptions& options) const;
+
  private:
   struct Slot {
     std::uint32_t resolution = 0;  // 0: unused
@@ -42,7 +49,9 @@ class MeshSlots {
     Mesh sent;
     std::uint64_t sentLayout = 0;  // the tessellator's layout of `sent`
     std::uint64_t sentId = 0;      // X-Mesh-Id of `sent`
-    std::uint64_t used = 0;        // when it last served (the least recent is reused)
+    std::uint64_t sentRevision = 0;
+    SolveOptions sentOptions;  // how the model of `sent` was solved
+    std::uint64_t used = 0;    // when it last served (the least recent is reused)
   };
 
   /// The slot of `resolution`, else the least recently used one, emptied for it.

@@ -35,6 +35,16 @@ std::string boundaryCurves(const VertexFrameSurface& surface, std::uint32_t samp
   return bytesOf(out.data(), out.size());
 }
 
+/// The mesh GET /api/mesh gives for `request`: the one last sent when it is of the open
+/// model's revision, else the model tessellated again into `fresh`.
+const Mesh& requestedMesh(const Studio& studio, const MeshRequest& request, Mesh& fresh) {
+  const Document& doc = studio.document;
+  if (const Mesh* sent = studio.meshes.sent(request.resolution, doc.revision(), request.options))
+    return *sent;
+  fresh = tessellate(studio.document.session().solved(request.options), {request.resolution});
+  return fresh;
+}
+
 }  // namespace
 
 void addSurfaceRoutes(const Studio& studio) {
@@ -60,13 +70,13 @@ void addSurfaceRoutes(const Studio& studio) {
 
   // The patch (frame) of every triangle of the mesh at `resolution` (uint32 each, as
   // GET /api/mesh lays it out for this revision): the page picks frames on the surface.
-  studio.server.Get(
-      "/api/patch-ids", studio.guarded([&doc](const httplib::Request& req, httplib::Response& res) {
-        doc.requireEditable();
-        const MeshRequest request = meshRequest(req, doc);
-        const Mesh mesh = tessellate(doc.session().solved(request.options), {request.resolution});
-        sendBinary(res, bytesOf(mesh.patchIds.data(), mesh.patchIds.size()), doc.revision());
-      }));
+  studio.server.Get("/api/patch-ids", studio.guarded([&studio, &doc](const httplib::Request& req,
+                                                                     httplib::Response& res) {
+    doc.requireEditable();
+    Mesh fresh;
+    const Mesh& mesh = requestedMesh(studio, meshRequest(req, doc), fresh);
+    sendBinary(res, bytesOf(mesh.patchIds.data(), mesh.patchIds.size()), doc.revision());
+  }));
 
   // Points of one patch and their parameters (edit_io.hpp: PatchQuery), solved as the
   // query's solver says: the page places force regions on the surface with them.
@@ -93,15 +103,16 @@ void addSurfaceRoutes(const Studio& studio) {
 
   // The analytic mean and Gaussian curvature at every vertex of the mesh GET /api/mesh
   // gives for the same parameters: float32 [vertex][H, K] (analysis.hpp: meshCurvatures).
-  studio.server.Get(
-      "/api/curvature", studio.guarded([&doc](const httplib::Request& req, httplib::Response& res) {
-        doc.requireEditable();
-        const MeshRequest request = meshRequest(req, doc);
-        const VertexFrameSurface& surface = *doc.session().solved(request.options).frames();
-        const Mesh mesh = tessellate(surface, {request.resolution});
-        const std::vector<float> values = meshCurvatures(surface, mesh, request.resolution);
-        sendBinary(res, bytesOf(values.data(), values.size()), doc.revision());
-      }));
+  studio.server.Get("/api/curvature", studio.guarded([&studio, &doc](const httplib::Request& req,
+                                                                     httplib::Response& res) {
+    doc.requireEditable();
+    const MeshRequest request = meshRequest(req, doc);
+    const VertexFrameSurface& surface = *doc.session().solved(request.options).frames();
+    Mesh fresh;
+    const Mesh& mesh = requestedMesh(studio, request, fresh);
+    const std::vector<float> values = meshCurvatures(surface, mesh, request.resolution);
+    sendBinary(res, bytesOf(values.data(), values.size()), doc.revision());
+  }));
 }
 
 }  // namespace pdesurf::studio
