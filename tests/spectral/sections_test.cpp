@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "pdesurf/sections.hpp"
 
@@ -105,22 +106,17 @@ TEST(Sections, FirstStartsOnTheReferenceRayAndLaterOnesWithTheLeastTwist) {
   for (int i = 0; i < 6; ++i)
     stars.push_back(sampledStar(0.3 * i, 900, angle(rng), true, false, 0.15 * i));
   const auto prepared = prepareSections(stars, o);
+  // The twist: the summed squared distances between the loops' points in order, each loop
+  // centred and scaled to unit RMS radius (as a 3 × n matrix: columns less their mean, over
+  // the Frobenius norm / √n).
   auto twist = [](const std::vector<Vec3>& p, const std::vector<Vec3>& q) {
     auto shape = [](const std::vector<Vec3>& x) {
-      Vec3 c = Vec3::Zero();
-      for (const Vec3& y : x) c += y;
-      c /= static_cast<double>(x.size());
-      double r = 0.0;
-      for (const Vec3& y : x) r += (y - c).squaredNorm();
-      r = std::sqrt(r / static_cast<double>(x.size()));
-      std::vector<Vec3> out;
-      for (const Vec3& y : x) out.push_back((y - c) / r);
-      return out;
+      const auto n = static_cast<Eigen::Index>(x.size());
+      const Eigen::Matrix3Xd m = Eigen::Map<const Eigen::Matrix3Xd>(x.front().data(), 3, n);
+      const Eigen::Matrix3Xd centred = m.colwise() - m.rowwise().mean();
+      return Eigen::Matrix3Xd(centred * (std::sqrt(static_cast<double>(n)) / centred.norm()));
     };
-    const auto a = shape(p), b = shape(q);
-    double cost = 0.0;
-    for (std::size_t j = 0; j < a.size(); ++j) cost += (a[j] - b[j]).squaredNorm();
-    return cost;
+    return (shape(p) - shape(q)).squaredNorm();
   };
   for (std::size_t i = 1; i < prepared.size(); ++i) {
     const double chosen = twist(prepared[i - 1].points, prepared[i].points);
