@@ -30,28 +30,29 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "numerics/force_shape.hpp"
 #include "pdesurf/vertex_frames.hpp"
-#include "runtime/simd.hpp"
+#include "vertex_frames/row_kernel.hpp"
 
 namespace pdesurf {
 
 namespace {
 
+using detail::EvaluateLine;
+using detail::foldedLine;
+using detail::foldLines;
+using detail::ForceTables;
+using detail::kDegenerate2;
+using detail::kFields;
+using detail::kLanes;
+using detail::lineForces;
+using detail::LinePolynomials;
+using detail::shapeTable;
+
 constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
-/// Doubles in one vector register (AVX-512 holds 8): buffers are padded to this.
-constexpr std::size_t kLanes = 8;
-/// Points per block of the row kernel on rows long enough (two AVX-512 registers of doubles
-/// make one register of floats).
-constexpr std::size_t kWideBlock = 16;
 /// Mesh points per parallel task: enough (tens of microseconds) that scheduling is noise.
 constexpr std::size_t kPointsPerTask = 8192;
 
-/// A normal counts as degenerate (a pole, a cusp) when |Su × Sv| is below this fraction of
-/// the patch's squared size: far below any real surface, far above rounding noise (1e-16).
-constexpr double kDegenerateNormalSine = 1e-10;
-constexpr double kDegenerate2 = kDegenerateNormalSine * kDegenerateNormalSine;
 /// A summed boundary normal shorter than this (a sum of unit vectors) has cancelled out.
 constexpr float kCancelledNormal = 1e-3f;
 /// Where the normal is degenerate it is taken this far inside the patch, towards its centre.
@@ -67,234 +68,6 @@ std::vector<double> gridParams(std::uint32_t n) {
   for (std::uint32_t i = 0; i < n; ++i) t[i] = i + 1 == n ? 1.0 : static_cast<double>(i) / (n - 1);
   return t;
 }
-
-/// The force shape and its derivative sampled on the grid.
-void shapeTable(const std::vector<double>& grid, double x0, double x1, std::vector<double>& s,
-                std::vector<double>& ds) {
-  s.resize(grid.size());
-  ds.resize(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    const detail::ForceShape f = detail::forceShape(grid[i], x0, x1);
-    s[i] = f.s;
-    ds[i] = f.ds;
-  }
-}
-
-/// Per-u and per-v tables of each force of a patch, on the padded grid.
-struct ForceTables {
-  std::vector<double> su, dsu, sv, dsv;
-};
-
-/// The summed force terms along a row (v = t[fixed]) or a column (u = t[fixed]), as 9 rows
-/// of np values (position, derivative along the line, derivative across it; x y z each):
-/// Σ k ⊙ (s s̃, s' s̃, s s̃'), s along the line and s̃ at the fixed parameter, the derivatives
-/// divided by the patch's size bound as in foldLines. False when no force reaches the line.
-bool lineForces(const VertexFramePatch& patch, const std::vector<ForceTables>& tables, bool column,
-                std::size_t fixed, std::size_t np, double invScale, std::vector<double>& out) {
-  bool any = false;
-  for (std::size_t f = 0; f < patch.forces.size(); ++f) {
-    const ForceTables& ft = tables[f];
-    const double* s = column ? ft.sv.data() : ft.su.data();
-    const double* ds = column ? ft.dsv.data() : ft.dsu.data();
-    const double across = column ? ft.su[fixed] : ft.sv[fixed];
-    const double dAcross = column ? ft.dsu[fixed] : ft.dsv[fixed];
-    if (across == 0.0 && dAcross == 0.0) continue;
-    if (!any) out.assign(9 * np, 0.0);
-    any = true;
-    for (int c = 0; c < 3; ++c) {
-      const double kv = patch.forces[f].k[c] * across;
-      const double kda = kv * invScale, kdc = patch.forces[f].k[c] * dAcross * invScale;
-      double* p = out.data() + c * np;
-      double* da = out.data() + (3 + c) * np;
-      double* dc = out.data() + (6 + c) * np;
-      for (std::size_t i = 0; i < np; ++i) {
-        p[i] += kv * s[i];
-        da[i] += kda * ds[i];
-        dc[i] += kdc * s[i];
-      }
-    }
-  }
-  return any;
-}
-
-/// Lines of a patch folded over their fixed parameter, per component, in the line's own
-/// parameter x: S = Σ p[i] x^i, the derivative along the line Sa = Σ da[i] x^i and across it
-/// Sc = Σ dc[i] x^i (cubic, quadratic, quadratic); da and dc are divided by the patch's size
-/// bound. The normal numerator sign·(Sa × Sc) = Σ nrm[i] x^i is a quartic. Stored in chunks
-/// of kLanes lines, field by field: field f of line j at (j/kLanes·kFields + f)·kLanes +
-/// j%kLanes. Folding a chunk is one vectorised loop over its lines, and a line's fields lie
-/// at fixed offsets f·kLanes from its first, which the row kernel reads as broadcasts.
-constexpr std::size_t kFieldP = 0;     // p[k][i] at kFieldP + 4k + i
-constexpr std::size_t kFieldDa = 12;   // da[k][i] at kFieldDa + 3k + i
-constexpr std::size_t kFieldDc = 21;   // dc[k][i] at kFieldDc + 3k + i
-constexpr std::size_t kFieldNrm = 30;  // nrm[k][i] at kFieldNrm + 5k + i
-constexpr std::size_t kFields = 45;
-
-/// One folded line: its first field (the others at multiples of kLanes after it).
-struct LinePolynomials {
-  const double* field;
-  double sign;  ///< ±1: orients Sa × Sc as the mesh's normals (nrm includes it)
-  double operator()(std::size_t f) const { return field[f * kLanes]; }
-};
-
-/// Line j of folds stored as foldLines stores them.
-inline LinePolynomials foldedLine(const double* folds, std::size_t j, double sign) {
-  return {folds + (j / kLanes * kFields) * kLanes + j % kLanes, sign};
-}
-
-/// Folds lines y[0..count) of a patch; y is readable (padded) up to a whole chunk and `out`
-/// holds whole chunks. `a` holds the coefficients (per component, monomials as in
-/// VertexFramePatch) with its parameters ordered (along, across); y is the across one.
-void foldLines(const double (&a)[3][10], const double* __restrict y, std::size_t count, double sign,
-               double invScale, double* __restrict out) {
-  for (std::size_t chunk = 0; chunk < count; chunk += kLanes) {
-    double* __restrict o = out + chunk * kFields;
-    for (std::size_t l = 0; l < kLanes; ++l) {
-      const double y1 = y[chunk + l], y2 = y1 * y1, y3 = y2 * y1;
-      double da[3][3], dc[3][3];
-      for (int k = 0; k < 3; ++k) {
-        const double* c = a[k];
-        const double p1 = c[1] + y1 * c[7] + y2 * c[9], p2 = c[2] + y1 * c[8];
-        o[(kFieldP + 4 * k) * kLanes + l] = c[0] + y1 * c[4] + y2 * c[5] + y3 * c[6];
-        o[(kFieldP + 4 * k + 1) * kLanes + l] = p1;
-        o[(kFieldP + 4 * k + 2) * kLanes + l] = p2;
-        o[(kFieldP + 4 * k + 3) * kLanes + l] = c[3];
-        da[k][0] = p1 * invScale;
-        da[k][1] = 2.0 * p2 * invScale;
-        da[k][2] = 3.0 * c[3] * invScale;
-        dc[k][0] = (c[4] + 2.0 * y1 * c[5] + 3.0 * y2 * c[6]) * invScale;
-        dc[k][1] = (c[7] + 2.0 * y1 * c[9]) * invScale;
-        dc[k][2] = c[8] * invScale;
-        for (int i = 0; i < 3; ++i) {
-          o[(kFieldDa + 3 * k + i) * kLanes + l] = da[k][i];
-          o[(kFieldDc + 3 * k + i) * kLanes + l] = dc[k][i];
-        }
-      }
-      // nrm = sign · Σ_{i+l=m} da_i × dc_l, the coefficients of the product of the quadratics.
-      double m[3][5] = {};
-      for (int i = 0; i < 3; ++i)
-        for (int q = 0; q < 3; ++q) {
-          m[0][i + q] += da[1][i] * dc[2][q] - da[2][i] * dc[1][q];
-          m[1][i + q] += da[2][i] * dc[0][q] - da[0][i] * dc[2][q];
-          m[2][i + q] += da[0][i] * dc[1][q] - da[1][i] * dc[0][q];
-        }
-      for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 5; ++i) o[(kFieldNrm + 5 * k + i) * kLanes + l] = sign * m[k][i];
-    }
-  }
-}
-
-/// Calls block(i0) for the starts of whole blocks of B covering [0, count) (count ≥ B), the
-/// last one shifted back to end at `count`: it overlaps the block before and rewrites the
-/// same values, so that every block is one fixed-length vectorised loop.
-template <std::size_t B, typename Block>
-PDESURF_ALWAYS_INLINE void forEachBlock(std::size_t count, Block&& block) {
-  for (std::size_t i0 = 0;; i0 += B) {
-    if (i0 + B > count) i0 = count - B;
-    block(i0);
-    if (i0 + B >= count) break;
-  }
-}
-
-/// S and the unit normal at the points x[0..count) (count ≥ B) of one folded line, plus force
-/// terms (9 arrays at `forceStride`: position, along, across; x y z each) when Forces. Writes
-/// positions and normals as interleaved floats and |Sa × Sc|² (scale-free: a sine²) for
-/// degeneracy checks. Without forces the normal is the folded quartic; with them, the cross
-/// product per point. The line's coefficients are read once; the points go in blocks of B
-/// (forEachBlock). Returns whether some point is degenerate (|Sa × Sc|² not above kDegenerate2, or
-/// NaN).
-template <std::size_t B, bool Forces>
-PDESURF_ALWAYS_INLINE bool evaluateSpan(const double* __restrict x, std::size_t count,
-                                        const LinePolynomials& line, const double* __restrict force,
-                                        std::size_t forceStride, float* __restrict pos,
-                                        float* __restrict nor, double* __restrict cross2) {
-  double p[3][4], da[3][3], dc[3][3], nrm[3][5];
-  const double sign = line.sign;
-  for (std::size_t k = 0; k < 3; ++k) {
-    for (std::size_t i = 0; i < 4; ++i) p[k][i] = line(kFieldP + 4 * k + i);
-    for (std::size_t i = 0; i < 5; ++i) nrm[k][i] = Forces ? 0.0 : line(kFieldNrm + 5 * k + i);
-    for (std::size_t i = 0; i < 3; ++i) {
-      da[k][i] = Forces ? line(kFieldDa + 3 * k + i) : 0.0;
-      dc[k][i] = Forces ? line(kFieldDc + 3 * k + i) : 0.0;
-    }
-  }
-  // Positions, then normals: two loops over the line's blocks, each with fewer values live
-  // (its coefficients stay in registers) than one would need.
-  forEachBlock<B>(count, [&](std::size_t i0) PDESURF_ALWAYS_INLINE_LAMBDA {
-    const double* __restrict t = x + i0;
-    const double* __restrict f = Forces ? force + i0 : nullptr;
-    float* __restrict po = pos + 3 * i0;
-    for (std::size_t i = 0; i < B; ++i) {
-      for (int k = 0; k < 3; ++k) {
-        double v = p[k][0] + t[i] * (p[k][1] + t[i] * (p[k][2] + t[i] * p[k][3]));
-        if constexpr (Forces) v += f[k * forceStride + i];
-        po[3 * i + k] = static_cast<float>(v);
-      }
-    }
-  });
-  forEachBlock<B>(count, [&](std::size_t i0) PDESURF_ALWAYS_INLINE_LAMBDA {
-    const double* __restrict t = x + i0;
-    const double* __restrict f = Forces ? force + i0 : nullptr;
-    float* __restrict no = nor + 3 * i0;
-    double* __restrict c2 = cross2 + i0;
-    for (std::size_t i = 0; i < B; ++i) {
-      const double ti = t[i];
-      double nv[3];
-      if constexpr (Forces) {
-        double a[3], c[3];
-        for (int k = 0; k < 3; ++k) {
-          a[k] = da[k][0] + ti * (da[k][1] + ti * da[k][2]) + f[(3 + k) * forceStride + i];
-          c[k] = dc[k][0] + ti * (dc[k][1] + ti * dc[k][2]) + f[(6 + k) * forceStride + i];
-        }
-        nv[0] = sign * (a[1] * c[2] - a[2] * c[1]);
-        nv[1] = sign * (a[2] * c[0] - a[0] * c[2]);
-        nv[2] = sign * (a[0] * c[1] - a[1] * c[0]);
-      } else {
-        for (int k = 0; k < 3; ++k)
-          nv[k] =
-              nrm[k][0] + ti * (nrm[k][1] + ti * (nrm[k][2] + ti * (nrm[k][3] + ti * nrm[k][4])));
-      }
-      const double len2 = nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2];
-      // The length in single precision, which the float normal needs (and where the square
-      // root and division cost a fraction of double's). len2 is a sine², at most a few
-      // units; where it underflows float the point is degenerate, and its normal is replaced.
-      const float inv = 1.0f / std::sqrt(static_cast<float>(len2));
-      c2[i] = len2;
-      no[3 * i] = static_cast<float>(nv[0]) * inv;
-      no[3 * i + 1] = static_cast<float>(nv[1]) * inv;
-      no[3 * i + 2] = static_cast<float>(nv[2]) * inv;
-    }
-  });
-  int degenerate = 0;
-  for (std::size_t i = 0; i < count; ++i) degenerate |= !(cross2[i] > kDegenerate2);
-  return degenerate != 0;
-}
-
-/// evaluateSpan with or without forces, in the widest blocks that fit (count ≥ kLanes).
-PDESURF_ALWAYS_INLINE bool evaluateLineBody(const double* x, std::size_t count,
-                                            const LinePolynomials& r, const double* force,
-                                            std::size_t forceStride, float* pos, float* nor,
-                                            double* cross2) {
-  if (count >= kWideBlock)
-    return force ? evaluateSpan<kWideBlock, true>(x, count, r, force, forceStride, pos, nor, cross2)
-                 : evaluateSpan<kWideBlock, false>(x, count, r, nullptr, 0, pos, nor, cross2);
-  return force ? evaluateSpan<kLanes, true>(x, count, r, force, forceStride, pos, nor, cross2)
-               : evaluateSpan<kLanes, false>(x, count, r, nullptr, 0, pos, nor, cross2);
-}
-
-/// The row kernel for each SIMD level (src/runtime/simd.hpp), chosen once per tessellation.
-using EvaluateLine = bool (*)(const double*, std::size_t, const LinePolynomials&, const double*,
-                              std::size_t, float*, float*, double*);
-#define PDESURF_EVALUATE_LINE(name, target)                                              \
-  target bool name(const double* x, std::size_t count, const LinePolynomials& r,         \
-                   const double* force, std::size_t forceStride, float* pos, float* nor, \
-                   double* cross2) {                                                     \
-    return evaluateLineBody(x, count, r, force, forceStride, pos, nor, cross2);          \
-  }
-PDESURF_EVALUATE_LINE(evaluateLineV2, )
-PDESURF_EVALUATE_LINE(evaluateLineV3, PDESURF_TARGET_V3)
-PDESURF_EVALUATE_LINE(evaluateLineV4, PDESURF_TARGET_V4)
-#undef PDESURF_EVALUATE_LINE
 
 /// Quads whose four corners are patch-interior points have ids a, a+1 (row j-1) and
 /// a+inner, a+inner+1 (row j): their indices are a fixed pattern plus a running base,
@@ -449,7 +222,7 @@ class TessellationEngine {
   /// Per patch, the index of its first triangle (one more entry: the mesh's count).
   std::vector<std::size_t> firstTriangle_;
 
-  EvaluateLine evaluateLine_ = evaluateLineV2;  ///< the row kernel for this CPU
+  EvaluateLine evaluateLine_ = nullptr;  ///< the row kernel for this CPU (run sets it)
 
   /// Per patch, its four sides' points (n each, at a stride of np_): positions and unit
   /// normals, interleaved floats, as the sides' own directions run. Written before they are
@@ -874,7 +647,7 @@ void TessellationEngine::writeTriangleRow(TriangleRows& rows, std::uint32_t j,
 }
 
 void TessellationEngine::run(const VertexFrameSurface& surface, Mesh& mesh, bool writeTriangles) {
-  evaluateLine_ = detail::simdChoose<EvaluateLine>(evaluateLineV2, evaluateLineV3, evaluateLineV4);
+  evaluateLine_ = detail::rowKernel();
   mesh.positions.resize(std::size_t{vertexCount_} * 3);
   mesh.normals.resize(std::size_t{vertexCount_} * 3);
   if (writeTriangles) {
