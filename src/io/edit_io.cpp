@@ -1,6 +1,7 @@
 // Parsing and validation of studio edits (include/pdesurf/edit_io.hpp).
 #include "pdesurf/edit_io.hpp"
 #include "io/json_reader.hpp"
+#include "io/model_reader.hpp"
 
 #include <optional>
 
@@ -116,19 +117,10 @@ std::optional<Edit> parseStructureEdit(const Reader& rd, const Json& doc, const 
 }  // namespace
 
 GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model) {
-  const Reader rd("edit");
-  const Json doc = rd.parseDocument(json);
-  rd.expectObject(doc, "$");
+  const detail::ModelReader rd("edit");
+  const auto [doc, group, name] = rd.edit(json);
   GroupedEdit out;
-  if (auto it = doc.find("group"); it != doc.end()) {
-    if (!it->is_string())
-      rd.fail("$.group", fmt::format("expected a string, found {}", detail::typeName(*it)));
-    out.group = it->get<std::string>();
-  }
-  const Json& op = rd.member(doc, "$", "op");
-  if (!op.is_string())
-    rd.fail("$.op", fmt::format("expected a string, found {}", detail::typeName(op)));
-  const std::string name = op.get<std::string>();
+  out.group = group;
 
   if (name == "move-vertex") {
     MoveVertex e;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include <fmt/format.h>
@@ -34,6 +35,20 @@ class ModelReader : public Reader {
   std::string string(const Json& j, const std::string& path) const {
     if (!j.is_string()) fail(path, fmt::format("expected a string, found {}", typeName(j)));
     return j.get<std::string>();
+  }
+
+  /// An edit of the studio's (edit_io.hpp): its JSON object, its "group" (empty without one)
+  /// and its "op".
+  struct Edit {
+    Json doc;
+    std::string group, op;
+  };
+  Edit edit(std::string_view json) const {
+    Edit e{parseDocument(json), {}, {}};
+    expectObject(e.doc, "$");
+    if (auto it = e.doc.find("group"); it != e.doc.end()) e.group = string(*it, "$.group");
+    e.op = string(member(e.doc, "$", "op"), "$.op");
+    return e;
   }
 
   bool boolean(const Json& j, const std::string& path) const {
