@@ -138,7 +138,7 @@ struct GroupedEdit {
 };
 
 // Edits of spectral, cross-section and B-spline PDE models (src/session/shape_edits.cpp,
-// parsed by parseShapeEdit in edit_io.hpp). Each names what it changes as the model file
+// parsed by parseShapeEdit in edit_io.hpp, src/io/shape_edit_io.cpp). Each names what it changes as the model file
 // does; the session checks the result as the file parser would and solves it, refusing the
 // edit (a ModelError with the reason, the session unchanged) when either fails.
 
