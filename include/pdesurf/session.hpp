@@ -138,9 +138,9 @@ struct GroupedEdit {
 };
 
 // Edits of spectral, cross-section and B-spline PDE models (src/session/shape_edits.cpp,
-// parsed by parseShapeEdit in edit_io.hpp, src/io/shape_edit_io.cpp). Each names what it changes as the model file
-// does; the session checks the result as the file parser would and solves it, refusing the
-// edit (a ModelError with the reason, the session unchanged) when either fails.
+// parsed by parseShapeEdit in edit_io.hpp, src/io/shape_edit_io.cpp). Each names what it changes as
+// the model file does; the session checks the result as the file parser would and solves it,
+// refusing the edit (a ModelError with the reason, the session unchanged) when either fails.
 
 /// A curve of a model: a spectral model's condition (`index`), a cross-section (`index`),
 /// or a B-spline PDE model's curve by its file name (`name`: "uMin", "uMax", "vMin", "vMax",
