@@ -144,38 +144,6 @@ void shapeTable(const std::vector<double>& grid, double x0, double x1, std::vect
   }
 }
 
-/// The summed force terms along a row (v = t[fixed]) or a column (u = t[fixed]), as 9 rows
-/// of np values (position, derivative along the line, derivative across it; x y z each):
-/// Σ k ⊙ (s s̃, s' s̃, s s̃'), s along the line and s̃ at the fixed parameter, the derivatives
-/// divided by the patch's size bound as in foldLines. False when no force reaches the line.
-bool lineForces(const VertexFramePatch& patch, const std::vector<ForceTables>& tables, bool column,
-                std::size_t fixed, std::size_t np, double invScale, std::vector<double>& out) {
-  bool any = false;
-  for (std::size_t f = 0; f < patch.forces.size(); ++f) {
-    const ForceTables& ft = tables[f];
-    const double* s = column ? ft.sv.data() : ft.su.data();
-    const double* ds = column ? ft.dsv.data() : ft.dsu.data();
-    const double across = column ? ft.su[fixed] : ft.sv[fixed];
-    const double dAcross = column ? ft.dsu[fixed] : ft.dsv[fixed];
-    if (across == 0.0 && dAcross == 0.0) continue;
-    if (!any) out.assign(9 * np, 0.0);
-    any = true;
-    for (int c = 0; c < 3; ++c) {
-      const double kv = patch.forces[f].k[c] * across;
-      const double kda = kv * invScale, kdc = patch.forces[f].k[c] * dAcross * invScale;
-      double* p = out.data() + c * np;
-      double* da = out.data() + (3 + c) * np;
-      double* dc = out.data() + (6 + c) * np;
-      for (std::size_t i = 0; i < np; ++i) {
-        p[i] += kv * s[i];
-        da[i] += kda * ds[i];
-        dc[i] += kdc * s[i];
-      }
-    }
-  }
-  return any;
-}
-
 /// Folds lines y[0..count) of a patch; y is readable (padded) up to a whole chunk and `out`
 /// holds whole chunks. `a` holds the coefficients (per component, monomials as in
 /// VertexFramePatch) with its parameters ordered (along, across); y is the across one.
