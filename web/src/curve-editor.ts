@@ -57,6 +57,9 @@ export function mountCurveEditor(studio: Studio): void {
   frameView.scene.add(tangentLines);
 
   let handles: Handle[] = [];
+  /** Per handle, its line among tangentLines' (the tangents' lines are in handle order), -1
+   * for a handle that is no tangent tip. */
+  let tangentLine: number[] = [];
   let centres: CurveEntry[] = [];
   let picked: Handle | null = null;
   /** Whether the chosen curve was taken whole (its centre mark clicked): the panel says so. */
@@ -103,6 +106,8 @@ export function mountCurveEditor(studio: Studio): void {
     centreMarks.visible = centres.length > 0;
     handles = model ? shapeHandles(model, store.state.view) : [];
     const tangents = handles.filter((h) => h.kind === 'tangent');
+    let line = 0;
+    tangentLine = handles.map((h) => (h.kind === 'tangent' ? line++ : -1));
     tangentLines.geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(tangents.flatMap((h) => [...h.base, ...h.p])), 3));
     tangentLines.visible = tangents.length > 0;
     const xyz = new Float32Array(3 * handles.length);
@@ -123,10 +128,9 @@ export function mountCurveEditor(studio: Studio): void {
     const a = points.geometry.getAttribute('position') as THREE.BufferAttribute;
     a.setXYZ(index, p[0], p[1], p[2]);
     a.needsUpdate = true;
-    const h = handles[index];
-    if (h?.kind === 'tangent') {
-      // Its line's tip: the tangents' lines are in handle order.
-      const k = handles.slice(0, index).filter((x) => x.kind === 'tangent').length;
+    const k = tangentLine[index] ?? -1;
+    if (k >= 0) {
+      // Its line's tip.
       const l = tangentLines.geometry.getAttribute('position') as THREE.BufferAttribute;
       l.setXYZ(2 * k + 1, p[0], p[1], p[2]);
       l.needsUpdate = true;
