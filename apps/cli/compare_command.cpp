@@ -24,7 +24,8 @@ namespace {
 /// What `pdesurf compare --help` says the command does.
 constexpr const char* kCompareHelp =
     "RMS, mean and largest distance between a model (tessellated as by build) and a mesh, "
-    "both ways, relative to the mesh's bounding-box diagonal";
+    "both ways, relative to the mesh's bounding-box diagonal, and how the model's normals "
+    "agree with the mesh's (folded area, RMS normal deviation)";
 
 /// `pdesurf compare`: Metro-style distances between a model's mesh and a mesh file.
 struct CompareCommand {
@@ -70,8 +71,10 @@ struct CompareCommand {
     DistanceOptions options;
     options.samples = samples;
     MeshDistance d;
+    NormalDeviation normals;
     try {
       d = meshDistance(built.mesh, mesh, options);
+      normals = normalDeviation(built.mesh, mesh);
     } catch (const std::invalid_argument& e) {
       throw MeshIoError(fmt::format("{} vs {}: {}", modelPath, meshPath, e.what()));
     }
@@ -84,7 +87,8 @@ struct CompareCommand {
                 {"model_to_mesh", oneWayJson(d.aToB)},
                 {"mesh_to_model", oneWayJson(d.bToA)},
                 {"hausdorff", d.hausdorff},
-                {"hausdorff_relative", d.hausdorffRelative}};
+                {"hausdorff_relative", d.hausdorffRelative},
+                {"normals", normalsJson(normals)}};
       std::cout << j.dump(2) << '\n';
       return 0;
     }
@@ -95,6 +99,7 @@ struct CompareCommand {
         count(mesh.triangleCount(), "triangle"), d.diagonal, built.solveMs, built.tessMs, readMs,
         distanceMs);
     printDistances(d);
+    printNormals(normals);
     return 0;
   }
 };

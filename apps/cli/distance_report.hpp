@@ -1,10 +1,12 @@
-// How `compare` and `rebuild` print the distances between a model and a mesh.
+// How `compare` and `rebuild` print the distances between a model and a mesh, and how
+// the model's normals agree with the mesh's.
 #pragma once
 
 #include <string>
 
 #include <fmt/format.h>
 
+#include "cli_common.hpp"
 #include "pdesurf/mesh_distance.hpp"
 
 namespace pdesurf::cli {
@@ -25,6 +27,19 @@ inline void printDistances(const MeshDistance& d) {
   printOneWay("model -> mesh", d.aToB);
   printOneWay("mesh -> model", d.bToA);
   fmt::print("Hausdorff      {:.6g} ({})\n", d.hausdorff, percent(d.hausdorffRelative));
+}
+
+/// The model's normals against the mesh's (normalDeviation): its folded area and RMS normal
+/// deviation, on one line.
+inline void printNormals(const NormalDeviation& n) {
+  fmt::print("normals        folded {:.3g}% of the model's area, RMS deviation {:.3g}°{}\n",
+             100.0 * n.foldedArea, n.rmsDegrees,
+             n.reversed ? " (the model faces the other way, taken as it faces)" : "");
+}
+
+/// The same as JSON.
+inline Json normalsJson(const NormalDeviation& n) {
+  return {{"folded_area", n.foldedArea}, {"rms_degrees", n.rmsDegrees}, {"reversed", n.reversed}};
 }
 
 }  // namespace pdesurf::cli

@@ -126,6 +126,10 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
   cmd->add_flag("--prevent-folds", preventFolds,
                 "vertex-frames: refuse steps that fold more of the surface over (fewer folds, "
                 "a higher RMS)");
+  addInRange(cmd, "--fold-weight", conformalWeight,
+             "vertex-frames: weight of the fold-free term, which keeps each frame's map from "
+             "(u, v) near a rotation and scale in the mesh's tangent plane (0: distances alone)",
+             0.0, 1.0);
   cmd->add_flag("--fit-shape", fitShape,
                 "vertex-frames: after the vertices, fit a whole-frame force, a1 and a2 per frame "
                 "too (up to --iterations more iterations; more storage, a lower RMS)");
@@ -245,6 +249,8 @@ int RebuildCommand::runCrossSections() const {
   distanceOptions.samples = samples;
   const MeshDistance d = namingMesh(
       meshPath, "the rebuilt part: ", [&] { return meshDistance(surface, part, distanceOptions); });
+  const NormalDeviation normals =
+      namingMesh(meshPath, "the rebuilt part: ", [&] { return normalDeviation(surface, part); });
   const double measureMs = msSince(t0);
   // The peer: Open CASCADE's loft through the same sections, measured the same way.
   std::optional<MeshDistance> loftDistance;
@@ -275,6 +281,7 @@ int RebuildCommand::runCrossSections() const {
               {"diagonal", d.diagonal},
               {"model_to_part", oneWay(d.aToB)},
               {"part_to_model", oneWay(d.bToA)},
+              {"normals", normalsJson(normals)},
               {"model_storage_bytes", modelBytes},
               {"part_storage_bytes", partBytes},
               {"part_triangles", part.triangleCount()},
@@ -297,6 +304,7 @@ int RebuildCommand::runCrossSections() const {
              count(part.triangleCount(), "triangle"), d.diagonal);
   printOneWay("model -> part", d.aToB, 4);
   printOneWay("part -> model", d.bToA, 4);
+  printNormals(normals);
   if (loftDistance) {
     printOneWay("OCCT loft -> part", loftDistance->aToB, 4);
     printOneWay("part -> OCCT loft", loftDistance->bToA, 4);
@@ -350,6 +358,7 @@ int RebuildCommand::runVertexFrames() const {
   options.smoothness = args.smoothness;
   options.samplesPerSide = args.samples;
   options.preventFolds = args.preventFolds;
+  options.conformalWeight = args.conformalWeight;
   options.fitShape = args.fitShape;
   ProgressBar bar(args.fitShape ? 2 * args.iterations : args.iterations, !quiet);
   options.onIteration = [&](const FitIteration& it) {
@@ -358,14 +367,14 @@ int RebuildCommand::runVertexFrames() const {
     const FitMeasure& m = it.measure;
     fmt::print(
         "iteration {:>3}{}: RMS {}  surface -> mesh RMS {} mean {} max {}  mesh -> surface RMS "
-        "{} mean {} max {}  folded {}/{}\n",
+        "{} mean {} max {}  folded {} ({}/{})\n",
         it.iteration,
         it.iteration == 0 ? " (layout)"
         : it.shape ? fmt::format(" (shape: step {:g}, a1 a2 step {:g})", it.step, it.parameterStep)
                    : fmt::format(" (step {:g})", it.step),
         percent(m.rms()), percent(m.rmsToMesh), percent(m.meanToMesh), percent(m.maxToMesh),
-        percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel), m.foldedSamples,
-        m.samples);
+        percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel), percent(m.foldedArea),
+        m.foldedSamples, m.samples);
   };
   t0 = Clock::now();
   const FitResult fitted =
@@ -375,7 +384,9 @@ int RebuildCommand::runVertexFrames() const {
   writeFileAtomically(outPath, serializeVertexFrameModel(fitted.model));
   if (quiet) return 0;
   const VertexFrameSurface surface = solve(fitted.model);
-  const MeshDistance d = meshDistance(tessellate(surface, {resolution}), mesh);
+  const Mesh tessellated = tessellate(surface, {resolution});
+  const MeshDistance d = meshDistance(tessellated, mesh);
+  const NormalDeviation normals = normalDeviation(tessellated, mesh);
   fmt::print("{}: {}\n", outPath, fitted.stopReason);
   fmt::print("{}: {}, {}, {} -> {} (layout {:.1f} ms, fit {:.1f} ms)\n", layout.name,
              count(fitted.model.frames.size(), "frame"),
@@ -385,6 +396,7 @@ int RebuildCommand::runVertexFrames() const {
              meshPath, args.tube.empty() ? "" : " (the part between the end planes)",
              count(mesh.triangleCount(), "triangle"), d.diagonal);
   printDistances(d);
+  printNormals(normals);
   fmt::print("storage        {} bytes (numbers to six significant digits)\n",
              storageBytes(fitted.model));
   return 0;

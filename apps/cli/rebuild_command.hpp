@@ -24,6 +24,8 @@ struct VertexFrameRebuildArgs {
   std::uint32_t samples = 9;  ///< surface samples per patch side (0: automatic)
   bool preventFolds = false;  ///< refuse steps that fold more of the surface over
   bool fitShape = false;      ///< then fit a force, a1 and a2 per frame too
+  /// Weight of the fold-free term (0: off; FitOptions::conformalWeight).
+  double conformalWeight = 1e-5;
 
   void add(CLI::App* cmd);
 };

@@ -57,4 +57,23 @@ struct MeshDistance {
 /// neighbours'). Throws std::invalid_argument when a mesh has no triangle with area.
 MeshDistance meshDistance(const Mesh& a, const Mesh& b, const DistanceOptions& options = {});
 
+/// How the normals of a mesh A (a model's tessellation, or a simplified polygon) agree with
+/// those of a reference mesh B: each triangle of A with area, at its centroid, against the
+/// normal of B's triangle closest to that centroid. A's overall orientation is taken by
+/// majority (the sign of the area-weighted sum of the cosines), so a surface that faces
+/// inwards consistently is not counted as folded; the angles are measured after that flip.
+struct NormalDeviation {
+  /// The share of A's area whose normal points against B's (cosine below 0 after the flip):
+  /// folds, flaps and creases that B does not have.
+  double foldedArea = 0.0;
+  /// sqrt(Σ area θ² / Σ area), θ the angle between the normals (0° to 180°), in degrees.
+  double rmsDegrees = 0.0;
+  /// True where A's majority orientation is opposite to B's (A faces the other way).
+  bool reversed = false;
+};
+
+/// Measures A's normals against B's (NormalDeviation); `threads` as in DistanceOptions.
+/// Throws std::invalid_argument when a mesh has no triangle with area.
+NormalDeviation normalDeviation(const Mesh& a, const Mesh& b, unsigned threads = 0);
+
 }  // namespace pdesurf

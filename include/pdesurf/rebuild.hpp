@@ -65,6 +65,9 @@ struct FitMeasure {
   /// closest point, against the orientation most of the samples agree on: folds.
   std::uint32_t foldedSamples = 0;
   std::uint32_t samples = 0;  ///< surface samples in all
+  /// The share of the surface's area (the samples' area weights) that the folded samples
+  /// stand for.
+  double foldedArea = 0.0;
   /// sqrt((rmsToMesh² + rmsToModel²) / 2): the quantity each step may not increase.
   double rms() const;
 };
@@ -107,6 +110,12 @@ struct FitOptions {
   /// vertices of the frames that fold more stay and the rest of the step is tried again.
   /// Off by default: it costs RMS (docs/rebuild.md, Limits).
   bool preventFolds = false;
+  /// Weight λ of the fold-free term: λ diag² / A · Σ_k ∫∫ |S_v - ρ_k m × S_u|² du dv over
+  /// every frame k, m the mesh's normal at the closest point (turned to the surface's
+  /// orientation), ρ_k the frame's aspect (docs/rebuild.md, "Folds"). It keeps each patch's
+  /// map from (u, v) to the surface close to a rotation and scale in the mesh's tangent
+  /// plane, so its Jacobian cannot turn over. 0: off (the distances alone).
+  double conformalWeight = 1e-5;
   /// After the vertex fit stops, fits the shape too, for up to maxIterations more
   /// iterations: a whole-frame sculpting force per frame (its f0 joins the vertices in the
   /// least squares: with a1, a2 fixed it only adds f0-proportional sin(πu) sin(πv) to the

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -77,6 +78,11 @@ class ClosestPoints {
   Point closest(const Point& q) const { return tree_.closest_point(q); }
   /// Faster when `hint` is near the answer (the previous sample's closest point).
   Point closest(const Point& q, const Point& hint) const { return tree_.closest_point(q, hint); }
+  /// The index (into the AreaTriangles it was built from) of a triangle closest to q.
+  std::size_t closestTriangle(const Point& q) const {
+    return static_cast<std::size_t>(tree_.closest_point_and_primitive(q).second -
+                                    triangles_.cbegin());
+  }
 
  private:
   Triangles triangles_;
@@ -188,6 +194,16 @@ OneWayDistance oneWay(const Mesh& a, const AreaTriangles& at, const ClosestPoint
   return d;
 }
 
+/// Runs `work` on `threads` threads (0: as many as oneTBB allows: all cores, or the CLI's
+/// --threads).
+template <class Work>
+void withThreads(unsigned threads, Work&& work) {
+  if (threads > 0)
+    tbb::task_arena(static_cast<int>(threads)).execute(work);
+  else
+    work();
+}
+
 }  // namespace
 
 MeshDistance meshDistance(const Mesh& a, const Mesh& b, const DistanceOptions& options) {
@@ -201,13 +217,43 @@ MeshDistance meshDistance(const Mesh& a, const Mesh& b, const DistanceOptions& o
     result.aToB = oneWay(a, at, *onB, result.diagonal, options);
     result.bToA = oneWay(b, bt, *onA, result.diagonal, options);
   };
-  if (options.threads > 0)
-    tbb::task_arena(static_cast<int>(options.threads)).execute(work);
-  else
-    work();  // as many threads as oneTBB allows (all cores, or the CLI's --threads)
+  withThreads(options.threads, work);
   result.hausdorff = std::max(result.aToB.max, result.bToA.max);
   result.hausdorffRelative =
       result.diagonal > 0.0 ? result.hausdorff / result.diagonal : result.hausdorff;
+  return result;
+}
+
+NormalDeviation normalDeviation(const Mesh& a, const Mesh& b, unsigned threads) {
+  const AreaTriangles at = areaTriangles(a, "first"), bt = areaTriangles(b, "second");
+  // Per triangle of A: the cosine between its normal and that of B's triangle closest to
+  // its centroid.
+  std::vector<double> cosine(at.corners.size());
+  withThreads(threads, [&] {
+    const ClosestPoints onB(bt);
+    tbb::parallel_for(std::size_t{0}, at.corners.size(), [&](std::size_t t) {
+      const auto& [p0, p1, p2] = at.corners[t];
+      const std::size_t u = onB.closestTriangle(toPoint((p0 + p1 + p2) / 3.0));
+      const auto& [q0, q1, q2] = bt.corners[u];
+      cosine[t] = std::clamp(
+          (p1 - p0).cross(p2 - p0).normalized().dot((q1 - q0).cross(q2 - q0).normalized()), -1.0,
+          1.0);
+    });
+  });
+  double agreement = 0.0;
+  for (std::size_t t = 0; t < cosine.size(); ++t) agreement += at.areas[t] * cosine[t];
+  NormalDeviation result;
+  result.reversed = agreement < 0.0;
+  const double sign = result.reversed ? -1.0 : 1.0;
+  double folded = 0.0, squares = 0.0;
+  for (std::size_t t = 0; t < cosine.size(); ++t) {
+    const double c = sign * cosine[t];
+    if (c < 0.0) folded += at.areas[t];
+    const double angle = std::acos(c) * 180.0 / std::numbers::pi;
+    squares += at.areas[t] * angle * angle;
+  }
+  result.foldedArea = folded / at.total;
+  result.rmsDegrees = std::sqrt(squares / at.total);
   return result;
 }
 

@@ -122,6 +122,8 @@ Evaluation closestPairs(VertexFrameSurface surface, const SampleGrid& grid, cons
   std::vector<double> cosine(count), distances(count);
   e.pairs.resize(count);
   e.meshTriangle.resize(count);
+  e.du.resize(count);
+  e.dv.resize(count);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, nFrames), [&](const auto& range) {
     for (std::uint32_t k = range.begin(); k != range.end(); ++k) {
       const double flip = surface.topology->flipped[k] ? -1.0 : 1.0;
@@ -130,6 +132,8 @@ Evaluation closestPairs(VertexFrameSurface surface, const SampleGrid& grid, cons
         const SampleGrid::Point& gp = grid.points[s];
         const SurfacePoint sp = surface.patches[k].evaluate(gp.u, gp.v);
         positions[i] = sp.p;
+        e.du[i] = sp.du;
+        e.dv[i] = sp.dv;
         const auto hit =
             hints ? target.tree.closest_point_and_primitive(
                         toPoint(sp.p), {toPoint(hints->pairs[i].target),
@@ -179,8 +183,12 @@ Evaluation closestPairs(VertexFrameSurface surface, const SampleGrid& grid, cons
     sum += e.pairs[i].weight * distances[i];
     sumSquares += e.pairs[i].weight * distances[i] * distances[i];
     max = std::max(max, distances[i]);
-    if (orientation * cosine[i] < 0.0) ++e.foldsPerFrame[e.pairs[i].frame];
+    if (orientation * cosine[i] < 0.0) {
+      ++e.foldsPerFrame[e.pairs[i].frame];
+      e.measure.foldedArea += e.pairs[i].weight;
+    }
   }
+  e.orientation = orientation;
   e.measure.samples = static_cast<std::uint32_t>(count);
   for (std::uint32_t f : e.foldsPerFrame) e.measure.foldedSamples += f;
   e.measure.rmsToMesh = std::sqrt(sumSquares) / diag;

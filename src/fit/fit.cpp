@@ -142,7 +142,7 @@ class Fitter {
       bool accepted = false, raised = false;
       for (;;) {
         const Eigen::VectorXd y0 = state();
-        const Eigen::VectorXd solution = leastSquares(current.pairs, y0);
+        const Eigen::VectorXd solution = leastSquares(current, y0);
         // Below plain distances a step that fails whole and halved says the tangential
         // weight is too small: raising it (a better damped solution) costs one solve, the
         // further halvings an evaluation each and rarely succeed.
@@ -215,6 +215,12 @@ class Fitter {
     for (std::uint32_t k = 0; k < nFrames; ++k)
       for (std::size_t s = 0; s < grid.size(); ++s)
         gridWeights_[k * grid.size() + s] = linear_->weights(k, grid[s].u, grid[s].v);
+    gridDerivatives_.resize(2 * nFrames * grid.size());
+    for (std::uint32_t k = 0; k < nFrames; ++k)
+      for (std::size_t s = 0; s < grid.size(); ++s)
+        for (int d = 0; d < 2; ++d)
+          gridDerivatives_[(k * grid.size() + s) * 2 + d] =
+              linear_->derivativeWeights(k, grid[s].u, grid[s].v, d);
     std::vector<Eigen::Triplet<double>> t;
     for (int c = 0; c < 3; ++c) {
       const auto& rows = linear_->stripRows(c);
@@ -299,6 +305,41 @@ class Fitter {
     return fit::closestPairs(solve(model, linear_->sharedTopology()), grid_, target_, hints);
   }
 
+  /// Per frame, the aspect ρ_k = sqrt(∫∫|S_v|² / ∫∫|S_u|²) of the surface `e` measured (0
+  /// for a frame with no extent), and the surface's area A = Σ_k ∫∫ |S_u × S_v| du dv.
+  struct Aspects {
+    std::vector<double> rho;
+    double area = 0.0;
+  };
+  Aspects aspects(const Evaluation& e) const {
+    const std::vector<SampleGrid::Point>& grid = grid_.points;
+    const std::size_t nFrames = model_.frames.size(), perFrame = grid.size();
+    Aspects out{std::vector<double>(nFrames, 0.0)};
+    for (std::size_t k = 0; k < nFrames; ++k) {
+      double uu = 0.0, vv = 0.0;
+      for (std::size_t s = 0; s < perFrame; ++s) {
+        const std::size_t i = k * perFrame + s;
+        uu += grid[s].weight * e.du[i].squaredNorm();
+        vv += grid[s].weight * e.dv[i].squaredNorm();
+        out.area += grid[s].weight * cellArea() * e.du[i].cross(e.dv[i]).norm();
+      }
+      if (uu > 0.0 && vv > 0.0) out.rho[k] = std::sqrt(vv / uu);
+    }
+    return out;
+  }
+
+  /// The area in (u, v) a sample's unit weight stands for: the grid's weights sum to
+  /// (g - 1)², the unit square's area to 1.
+  double cellArea() const { return 1.0 / ((grid_.perSide - 1.0) * (grid_.perSide - 1.0)); }
+
+  /// The unit normal that sample i of frame k should turn to: the mesh's at its closest point,
+  /// turned as the surface mostly faces and as the frame is flipped (so that S_u × S_v · m > 0
+  /// where the frame faces as the rest does).
+  Vec3 facing(const Evaluation& e, std::size_t k, std::size_t i) const {
+    const double flip = linear_->topology().flipped[k] ? -1.0 : 1.0;
+    return flip * e.orientation * target_.normals[e.meshTriangle[i]];
+  }
+
   /// The most folded samples a step from `current` may leave (FitOptions::preventFolds).
   static std::uint32_t foldLimit(const Evaluation& current) {
     const auto allowance = static_cast<std::uint32_t>(kFoldAllowance * current.measure.samples);
@@ -359,6 +400,63 @@ class Fitter {
     laplacian_.setFromTriplets(triplets.begin(), triplets.end());
   }
 
+  /// The fold-free term (FitOptions::conformalWeight; docs/rebuild.md, "Folds"): per surface
+  /// sample (frame k, u, v), with m the mesh's normal at its closest point turned to the way
+  /// the frame must face (the surface's majority orientation, the frame's flip), the residual
+  /// r = S_v - ρ_k m × S_u, zero where the patch maps a square of (u, v) to a rectangle of
+  /// aspect ρ_k in the tangent plane, turning as the mesh does. |r|² = |S_v|² + ρ²|S_u⊥|²
+  /// - 2ρ (S_u × S_v)·m + ρ²(S_u·m)²: it penalises a tangent leaving the tangent plane, a
+  /// Jacobian that shears, and above all one whose determinant turns negative (a fold).
+  /// S_u, S_v are affine in the unknowns and m, ρ_k are frozen at the current iterate, so
+  /// the term is quadratic: weight λ diag² / A · Σ_k ∫∫ |r|² du dv, A the surface's area and
+  /// ρ_k² = ∫∫|S_v|² / ∫∫|S_u|² over frame k. Added into the frames' normal blocks.
+  template <int Slots, class Blocks, class Unknown>
+  void addConformal(const Evaluation& current, Blocks& blocks, Eigen::VectorXd& rhs,
+                    const Unknown& unknown) const {
+    using Weights = Eigen::Matrix<double, Slots, 1>;
+    const std::vector<SampleGrid::Point>& grid = grid_.points;
+    const std::size_t nFrames = model_.frames.size(), perFrame = grid.size();
+    const Aspects aspect = aspects(current);
+    if (!(aspect.area > 0.0)) return;
+    const double scale =
+        options_.conformalWeight * target_.diagonal * target_.diagonal * cellArea() / aspect.area;
+    for (std::size_t k = 0; k < nFrames; ++k) {
+      const double rho = aspect.rho[k];
+      if (rho == 0.0) continue;
+      auto& block = blocks[k];
+      for (std::size_t s = 0; s < perFrame; ++s) {
+        const std::size_t i = k * perFrame + s;
+        // S_u = Σ aᵢ xᵢ + offU and S_v = Σ bᵢ xᵢ + offV over the frame's unknowns.
+        const PointWeights& wu = gridDerivatives_[2 * i];
+        const PointWeights& wv = gridDerivatives_[2 * i + 1];
+        Weights a, b;
+        for (int p = 0; p < 8; ++p) a[p] = wu.vertex[p], b[p] = wv.vertex[p];
+        for (int d = 0; d < 2; ++d) a[8 + d] = wu.strip[d], b[8 + d] = wv.strip[d];
+        if constexpr (Slots == 11) {
+          const detail::ForceShape fu = detail::forceShape(grid[s].u, 0.0, 1.0);
+          const detail::ForceShape fv = detail::forceShape(grid[s].v, 0.0, 1.0);
+          a[10] = fu.ds * fv.s;
+          b[10] = fu.s * fv.ds;
+        }
+        const Vec3 m = facing(current, k, i);
+        Eigen::Matrix3d n;  // n x = m × x
+        n << 0.0, -m.z(), m.y(), m.z(), 0.0, -m.x(), -m.y(), m.x(), 0.0;
+        const Eigen::Matrix3d tangential = Eigen::Matrix3d::Identity() - m * m.transpose();
+        const double c = scale * grid[s].weight;
+        // r = Σ_p G_p x_p + r0, G_p = b_p I - ρ a_p N: G_pᵀG_q = b_p b_q I + ρ(a_p b_q -
+        // b_p a_q) N + ρ² a_p a_q (I - m mᵀ), as Nᵀ = -N and NᵀN = I - m mᵀ.
+        for (int p = 0; p < Slots; ++p)
+          for (int q = 0; q < Slots; ++q)
+            block.template block<3, 3>(3 * p, 3 * q) +=
+                c * (b[p] * b[q] * Eigen::Matrix3d::Identity() +
+                     rho * (a[p] * b[q] - b[p] * a[q]) * n + rho * rho * a[p] * a[q] * tangential);
+        const Vec3 r0 = wv.offset - rho * m.cross(wu.offset);
+        for (int p = 0; p < Slots; ++p)
+          rhs.segment<3>(3 * unknown(k, p)) -= c * (b[p] * r0 + rho * a[p] * m.cross(r0));
+      }
+    }
+  }
+
   /// The unknowns y that minimise the paired squared distances plus the smoothness term,
   /// with each strip's cubic coefficient tied to the vertices as the global solver ties it.
   /// Written with the strip values X as unknowns too, z = (y, X), the objective is a sparse
@@ -367,14 +465,15 @@ class Fitter {
   /// never formed: conjugate gradients apply it as products with K and L, preconditioned by
   /// the sparse Cholesky factor of K's local block K_yy (its pattern analysed once), and
   /// start from the current unknowns y0.
-  Eigen::VectorXd leastSquares(const std::vector<Pair>& pairs, const Eigen::VectorXd& y0) {
-    return shape_ ? leastSquares<11>(pairs, y0) : leastSquares<10>(pairs, y0);
+  Eigen::VectorXd leastSquares(const Evaluation& current, const Eigen::VectorXd& y0) {
+    return shape_ ? leastSquares<11>(current, y0) : leastSquares<10>(current, y0);
   }
 
   /// Slots: a frame's unknowns, 8 vertices and 2 strips, and in the shape phase (11) its
   /// force's amplitude, whose weight at (u, v) is sin(πu) sin(πv).
   template <int Slots>
-  Eigen::VectorXd leastSquares(const std::vector<Pair>& pairs, const Eigen::VectorXd& y0) {
+  Eigen::VectorXd leastSquares(const Evaluation& current, const Eigen::VectorXd& y0) {
+    const std::vector<Pair>& pairs = current.pairs;
     const auto n = static_cast<Eigen::Index>(model_.vertices.size());
     const auto strips = static_cast<Eigen::Index>(linear_->stripCount());
     const Eigen::Index free = y0.size(), size = free + 3 * strips;
@@ -411,6 +510,7 @@ class Fitter {
       for (int i = 0; i < Slots; ++i)
         rhs.segment<3>(3 * unknown(p.frame, i)) += p.weight * a[i] * mt;
     }
+    if (options_.conformalWeight > 0.0) addConformal<Slots>(current, blocks, rhs, unknown);
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(nFrames * 9 * Slots * Slots);
     std::vector<char> used(static_cast<std::size_t>(n), 0);
@@ -472,7 +572,8 @@ class Fitter {
   FitOptions options_;
   SampleGrid grid_;  ///< the surface samples on every patch
   std::unique_ptr<LinearSurface> linear_;
-  std::vector<PointWeights> gridWeights_;  ///< per frame, per grid point
+  std::vector<PointWeights> gridWeights_;      ///< per frame, per grid point
+  std::vector<PointWeights> gridDerivatives_;  ///< per frame, per grid point: S_u's, S_v's
   /// The strip values as rows on the unknowns, 3 × strips by 3 × vertices (component c of
   /// strip s in row 3s + c).
   Eigen::SparseMatrix<double, Eigen::RowMajor> strips_;

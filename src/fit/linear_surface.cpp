@@ -102,8 +102,22 @@ LinearSurface::LinearSurface(const VertexFrameModel& model)
 }
 
 PointWeights LinearSurface::weights(std::uint32_t frame, double u, double v) const {
+  return weightsOf(frame, u, v, -1);
+}
+
+PointWeights LinearSurface::derivativeWeights(std::uint32_t frame, double u, double v,
+                                              int direction) const {
+  return weightsOf(frame, u, v, direction);
+}
+
+PointWeights LinearSurface::weightsOf(std::uint32_t frame, double u, double v,
+                                      int direction) const {
   const double u2 = u * u, v2 = v * v;
-  const std::array<double, 10> m = {1.0, u, u2, u2 * u, v, v2, v2 * v, u * v, u2 * v, u * v2};
+  // The monomials 1, u, u², u³, v, v², v³, uv, u²v, uv², or their derivatives along u or v.
+  const std::array<double, 10> m =
+      direction < 0    ? std::array{1.0, u, u2, u2 * u, v, v2, v2 * v, u * v, u2 * v, u * v2}
+      : direction == 0 ? std::array{0.0, 1.0, 2 * u, 3 * u2, 0.0, 0.0, 0.0, v, 2 * u * v, v2}
+                       : std::array{0.0, 0.0, 0.0, 0.0, 1.0, 2 * v, 3 * v2, u, u2, 2 * u * v};
   PointWeights w;
   const Basis& b = basis();
   for (int i = 0; i < 8; ++i) {
@@ -111,12 +125,16 @@ PointWeights LinearSurface::weights(std::uint32_t frame, double u, double v) con
     for (int k = 0; k < 10; ++k) sum += b[k][i] * m[k];
     w.vertex[i] = sum;
   }
-  w.strip[0] = topology_->parity[frame][0] * cubicShape(u);
-  w.strip[1] = topology_->parity[frame][1] * cubicShape(v);
+  const auto along = [&](double t, int d) {
+    return direction < 0 ? cubicShape(t) : direction == d ? cubicShapeDerivative(t) : 0.0;
+  };
+  w.strip[0] = topology_->parity[frame][0] * along(u, 0);
+  w.strip[1] = topology_->parity[frame][1] * along(v, 1);
   for (const ForceTerm& f : forces_[frame]) {
-    const double su = detail::forceShape(u, f.region.u0, f.region.u1).s;
-    const double sv = detail::forceShape(v, f.region.v0, f.region.v1).s;
-    w.offset += (su * sv) * f.k;
+    const detail::ForceShape su = detail::forceShape(u, f.region.u0, f.region.u1);
+    const detail::ForceShape sv = detail::forceShape(v, f.region.v0, f.region.v1);
+    const double s = direction < 0 ? su.s * sv.s : direction == 0 ? su.ds * sv.s : su.s * sv.ds;
+    w.offset += s * f.k;
   }
   return w;
 }

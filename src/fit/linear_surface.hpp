@@ -17,6 +17,8 @@ namespace pdesurf::fit {
 /// ψ(t) = t³ - 3t²/2 + t/2: how a strip's cubic coefficient enters a patch along its
 /// direction (the closed form's C1, C2 and C3 terms together); 0 at t = 0, ½ and 1.
 inline double cubicShape(double t) { return t * (t - 0.5) * (t - 1.0); }
+/// ψ'(t) = 3t² - 3t + ½.
+inline double cubicShapeDerivative(double t) { return 3.0 * t * t - 3.0 * t + 0.5; }
 
 /// One surface point as weights on unknowns: the frame's 8 vertices and its two strips.
 struct PointWeights {
@@ -36,6 +38,9 @@ class LinearSurface {
 
   /// The weights of S(frame, u, v).
   PointWeights weights(std::uint32_t frame, double u, double v) const;
+  /// The weights of the derivative ∂S/∂u (direction 0) or ∂S/∂v (direction 1) at (u, v):
+  /// S_u and S_v are affine in the unknowns as S is.
+  PointWeights derivativeWeights(std::uint32_t frame, double u, double v, int direction) const;
 
   /// The global solver's strip values as rows on the vertices: component c of strip s is
   /// Σ_j stripRows(c)(s, j) x_j[c] (a zero row for a pinned or undetermined strip).
@@ -60,6 +65,9 @@ class LinearSurface {
   const Frame& frame(std::uint32_t k) const { return frames_[k]; }
 
  private:
+  /// S's weights (direction -1) or those of its derivative along u (0) or v (1).
+  PointWeights weightsOf(std::uint32_t frame, double u, double v, int direction) const;
+
   std::vector<Frame> frames_;
   std::vector<std::vector<ForceTerm>> forces_;
   std::shared_ptr<const FrameTopology> topology_;

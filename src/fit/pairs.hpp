@@ -30,6 +30,11 @@ struct Evaluation {
   std::vector<Pair> pairs;
   FitMeasure measure;
   std::vector<std::uint32_t> foldsPerFrame;  ///< folded surface samples per frame
+  /// +1 where most of the surface (by area) faces as the mesh does, -1 where it faces the
+  /// other way: the orientation that folds are counted against.
+  double orientation = 1.0;
+  /// Per surface sample, the patch's derivatives S_u and S_v there (the fold-free term).
+  std::vector<Vec3> du, dv;
   /// Per surface sample, the mesh triangle its closest point is on; per mesh vertex, the
   /// cell of the surface's sample grid its closest point is on: the next evaluation's
   /// hints (a query that starts from a near point prunes the tree at once).

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -187,6 +188,78 @@ TEST(MeshDistance, ElephantAgainstItselfAndAScaledCopy) {
   EXPECT_GT(d.hausdorff, 0.0);
   EXPECT_LE(d.hausdorff, farthest + kFloatTolerance);
   EXPECT_LT(d.aToB.rms, d.aToB.max);
+}
+
+// ---------------------------------------------------------------------------------------
+// Normals: folded area and RMS normal deviation of a mesh against a reference.
+
+/// Angles and area shares computed from float positions: a few ulps of float (1e-7
+/// relative) in each normal, far below 1e-4 of a degree or of the area.
+constexpr double kNormalTolerance = 1e-4;
+
+/// An n × n grid of squares, two triangles each, over [x0, x1] × [y0, y1] at height z, its
+/// triangles wound counter-clockwise seen from +z (normal +z), or the other way (`down`).
+Mesh gridSheet(double x0, double x1, double y0, double y1, double z, int n, bool down = false) {
+  Mesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      for (double c : {x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n, z})
+        m.positions.push_back(static_cast<float>(c));
+  auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      for (std::uint32_t v : down ? std::array{a, c, b, a, d, c} : std::array{a, b, c, a, c, d})
+        m.indices.push_back(v);
+    }
+  return m;
+}
+
+TEST(NormalDeviation, APlaneAgainstAPlaneAndReversed) {
+  const Mesh reference = gridSheet(-1, 1, -1, 1, 0, 16);
+  const Mesh model = gridSheet(-0.8, 0.8, -0.8, 0.8, 0.01, 7);
+  const NormalDeviation same = normalDeviation(model, reference);
+  EXPECT_EQ(same.foldedArea, 0.0);
+  EXPECT_LT(same.rmsDegrees, kNormalTolerance);
+  EXPECT_FALSE(same.reversed);
+  // Facing the other way throughout: the majority rule takes its orientation as it is.
+  const NormalDeviation reversed =
+      normalDeviation(gridSheet(-0.8, 0.8, -0.8, 0.8, 0.01, 7, true), reference);
+  EXPECT_EQ(reversed.foldedArea, 0.0);
+  EXPECT_LT(reversed.rmsDegrees, kNormalTolerance);
+  EXPECT_TRUE(reversed.reversed);
+}
+
+TEST(NormalDeviation, AFlapFoldedBackIsItsShareOfTheArea) {
+  // A Z fold over a plane: a sheet from x = 0 to 0.6, the flap folded back from 0.6 to 0.4
+  // just above it (facing down), and a sheet from 0.4 on to 1 above that: the flap is 0.2 of
+  // the 1.4 units of length, so 1/7 of the area, and its normals are 180° off.
+  const Mesh reference = gridSheet(-0.5, 1.5, -0.5, 1.5, 0, 20);
+  const Mesh folded = testing::merged(
+      testing::merged(gridSheet(0, 0.6, 0, 1, 0.01, 6), gridSheet(0.4, 0.6, 0, 1, 0.02, 2, true)),
+      gridSheet(0.4, 1, 0, 1, 0.03, 6));
+  const NormalDeviation d = normalDeviation(folded, reference);
+  EXPECT_NEAR(d.foldedArea, 1.0 / 7.0, kNormalTolerance);
+  EXPECT_FALSE(d.reversed);
+  EXPECT_NEAR(d.rmsDegrees, std::sqrt(180.0 * 180.0 / 7.0), kNormalTolerance);
+}
+
+TEST(NormalDeviation, ATiltedPlaneDeviatesByItsTilt) {
+  const Mesh reference = gridSheet(-2, 2, -2, 2, 0, 8);
+  for (double degrees : {5.0, 30.0, 80.0}) {
+    SCOPED_TRACE(degrees);
+    // The unit square tilted about the y axis (it stays within the reference's extent).
+    Mesh tilted = gridSheet(-0.5, 0.5, -0.5, 0.5, 0, 5);
+    const double t = degrees * std::numbers::pi / 180.0;
+    for (std::size_t v = 0; v < tilted.vertexCount(); ++v) {
+      const double x = tilted.positions[3 * v];
+      tilted.positions[3 * v] = static_cast<float>(x * std::cos(t));
+      tilted.positions[3 * v + 2] = static_cast<float>(0.1 + x * std::sin(t));
+    }
+    const NormalDeviation d = normalDeviation(tilted, reference);
+    EXPECT_EQ(d.foldedArea, 0.0);
+    EXPECT_NEAR(d.rmsDegrees, degrees, kNormalTolerance);
+  }
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "pdesurf/mesh_io.hpp"
 #include "support/cgal_data.hpp"
 #include "support/cli_run.hpp"
+#include "support/examples.hpp"
 #include "support/test_meshes.hpp"
 
 namespace pdesurf {
@@ -28,6 +29,11 @@ const char* kOneFrame = R"({"type": "vertex-frames",
   "vertices": [[0, 0, 0], [1, 0, 0], [2, 0, 0], [2, 1, 0], [2, 2, 0], [1, 2, 0], [0, 2, 0],
                [0, 1, 0]],
   "frames": [{"vertices": [0, 1, 2, 3, 4, 5, 6, 7]}]})";
+
+/// A model against its own tessellation: the same triangles, so the same normals up to the
+/// float rounding of the written mesh, 1e-7 in a cosine near 1: an angle of sqrt(2e-7) rad,
+/// 0.026°; 0.1° bounds it.
+constexpr double kNormalDegreesTolerance = 0.1;
 
 bool contains(const std::string& text, const std::string& what) {
   return text.find(what) != std::string::npos;
@@ -254,6 +260,26 @@ TEST_F(CliCompare, ModelAgainstItsOwnMeshAndAShiftedCopy) {
   for (const char* word : {"model -> mesh  RMS 0.25 (8.84%)", "mesh -> model  RMS 0.25 (8.84%)",
                            "Hausdorff      0.25 (8.84%)", "bounding-box diagonal 2.82843"})
     EXPECT_TRUE(contains(text.out, word)) << word << "\n" << text.out;
+}
+
+// A B-spline and a spectral model against their own tessellation: the normals agree
+// everywhere, and the line and the JSON say so.
+TEST_F(CliCompare, NormalsOfBSplineAndSpectralModels) {
+  for (const char* file : {"bspline-dome.json", "vase.json"}) {
+    SCOPED_TRACE(file);
+    const std::string model = testing::example(file);
+    ASSERT_EQ(run("build " + model + " -o own.off -q --resolution 9").code, 0);
+    const CliRun text = run("compare " + model + " own.off --resolution 9");
+    ASSERT_EQ(text.code, 0) << text.err;
+    EXPECT_TRUE(contains(text.out, "normals        folded 0% of the model's area, RMS deviation "))
+        << text.out;
+    const CliRun r = run("compare " + model + " own.off --resolution 9 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Json n = Json::parse(r.out)["normals"];
+    EXPECT_EQ(n["folded_area"].get<double>(), 0.0);
+    EXPECT_LT(n["rms_degrees"].get<double>(), kNormalDegreesTolerance);
+    EXPECT_FALSE(n["reversed"].get<bool>());
+  }
 }
 
 TEST_F(CliCompare, MissingFilesAreNamed) {
