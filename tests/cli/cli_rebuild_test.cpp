@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
@@ -104,6 +105,37 @@ TEST_F(CliRebuild, AGridOnADiskMeshMakesUTimesVFrames) {
   // print its progress and leave last_solve.off behind).
   EXPECT_EQ(r.out.rfind("iteration   0 (layout)", 0), 0u) << r.out;
   EXPECT_EQ(work_.entries(), std::vector<std::string>{"peaks.json"});
+}
+
+/// The line of `text` that starts with `prefix` (empty if none).
+std::string lineStarting(const std::string& text, const std::string& prefix) {
+  const auto at = text.rfind("\n" + prefix);
+  if (at == std::string::npos) return "";
+  return text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+}
+
+TEST_F(CliRebuild, TheNormalsLineIsCompares) {
+  const std::string mesh = testing::shellQuote(testing::cgalData("three_peaks.off"));
+  const CliRun r =
+      run("rebuild " + mesh + " --as vertex-frames --grid 4 3 --iterations 3 -o peaks.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Every iteration reports its folded area; the end, the model's normals as compare does.
+  EXPECT_TRUE(contains(lineStarting(r.out, "iteration   1"), "folded ")) << r.out;
+  const std::string normals = lineStarting(r.out, "normals ");
+  EXPECT_TRUE(contains(normals, "% of the model's area, RMS deviation ")) << r.out;
+  const CliRun c = run("compare peaks.json " + mesh);
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(lineStarting(c.out, "normals "), normals) << c.out;
+  // The fold-free term's weight: 0 turns it off, a negative one is a usage error.
+  EXPECT_EQ(run("rebuild " + mesh +
+                " --as vertex-frames --grid 4 3 --iterations 3 --fold-weight 0 -o off.json")
+                .code,
+            0);
+  const CliRun bad =
+      run("rebuild " + mesh + " --as vertex-frames --grid 4 3 --fold-weight -1 -o bad.json");
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_TRUE(contains(bad.err, "--fold-weight")) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(path("bad.json")));
 }
 
 /// The last "iteration N" line's number in the output.
