@@ -80,7 +80,10 @@ def vertex_frames(vertices, frames, a1=1.0, a2=1.0, forces=(), shared_forces=(),
     a value that is not finite or an index out of range, and ModelError for what the model
     file's parser refuses (a force without a solution, edges that disagree).
     """
-    count = _np.shape(frames)[0] if _np.ndim(frames) == 2 else 0
+    try:
+        count = _np.shape(frames)[0] if _np.ndim(frames) == 2 else 0
+    except ValueError:  # a ragged list
+        raise ValueError("frames: expected (K, 8) vertex indices, got a ragged list") from None
     return _core.vertex_frame_model(vertices, frames, _per_frame(a1, "a1", count),
                                     _per_frame(a2, "a2", count), list(forces),
                                     list(shared_forces), name)

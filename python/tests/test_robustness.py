@@ -53,6 +53,7 @@ def bad_calls(surface, mesh):
          ValueError),
         ("frames of shape (1, 7)", lambda: pdesurf.vertex_frames(square, frame[:, :7]),
          ValueError),
+        ("ragged frames", lambda: pdesurf.vertex_frames(square, [[0, 1], [2]]), ValueError),
         ("a1 with NaN", lambda: pdesurf.vertex_frames(square, frame, a1=np.nan), ValueError),
         ("a1 of two rows for one frame",
          lambda: pdesurf.vertex_frames(square, frame, a1=np.ones((2, 3))), ValueError),
