@@ -92,7 +92,7 @@ void translate(std::exception_ptr thrown) {
 // Models and surfaces.
 
 /// JSON text from a str, or from a dict through json.dumps.
-std::string jsonText(const py::handle& value, const char* name) {
+std::string jsonText(const py::object& value, const char* name) {
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::dict>(value))
     return py::module_::import("json").attr("dumps")(value).cast<std::string>();
@@ -186,8 +186,8 @@ SurfacePoint evaluatePatch(const SolvedModel& solved, std::size_t k, double u, d
       solved.solved());
 }
 
-py::tuple evaluate(const SolvedModel& solved, const py::handle& patch, const py::handle& u,
-                   const py::handle& v) {
+py::tuple evaluate(const SolvedModel& solved, const py::object& patch, const py::object& u,
+                   const py::object& v) {
   // Broadcast the three to one shape, then check them flat.
   const py::tuple shaped = py::module_::import("numpy").attr("broadcast_arrays")(
       py::array::ensure(patch), py::array::ensure(u), py::array::ensure(v));
@@ -237,8 +237,8 @@ py::array sampleGrid(const SolvedModel& solved, std::uint32_t grid) {
 
 /// The model of arrays: every argument checked here (ValueError naming it), then the whole
 /// model by the file parser (ModelError), as if it had been read from a file.
-Model vertexFrameModel(const py::handle& vertices, const py::handle& frames, const py::handle& a1,
-                       const py::handle& a2, const py::list& forces, const py::list& shared,
+Model vertexFrameModel(const py::object& vertices, const py::object& frames, const py::object& a1,
+                       const py::object& a2, const py::list& forces, const py::list& shared,
                        const std::string& name) {
   VertexFrameModel model;
   model.name = name;
@@ -257,7 +257,7 @@ Model vertexFrameModel(const py::handle& vertices, const py::handle& frames, con
     model.frames[k].a1 = a1s[k];
     model.frames[k].a2 = a2s[k];
   }
-  for (const py::handle& item : forces) {
+  for (const py::handle item : forces) {
     const auto force = item.cast<py::dict>();
     const std::uint32_t frame =
         indexRows(py::make_tuple(force["frame"]), "forces: frame", 0, count)[0];
@@ -269,7 +269,7 @@ Model vertexFrameModel(const py::handle& vertices, const py::handle& frames, con
     }
     model.frames[frame].forces.push_back(f);
   }
-  for (const py::handle& item : shared) {
+  for (const py::handle item : shared) {
     const auto force = item.cast<py::dict>();
     SharedForce f;
     f.f0 = points(floatRows(py::make_tuple(force["f0"]), "shared_forces: f0", 3))[0];
@@ -321,7 +321,7 @@ std::string shapeText(const py::array& a) {
 }
 
 /// The argument as a numpy array of the wanted kinds and shape (n, cols), or (n,) for cols 0.
-py::array checkedArray(const py::handle& value, const char* name, py::ssize_t cols,
+py::array checkedArray(const py::object& value, const char* name, py::ssize_t cols,
                        const std::string& kinds, const char* expected) {
   if (value.is_none()) badArgument(name, std::string("expected ") + expected + ", got None");
   py::array a = py::array::ensure(value);
@@ -338,7 +338,7 @@ py::array checkedArray(const py::handle& value, const char* name, py::ssize_t co
 }
 }  // namespace
 
-py::array_t<double, py::array::c_style> floatRows(const py::handle& value, const char* name,
+py::array_t<double, py::array::c_style> floatRows(const py::object& value, const char* name,
                                                   py::ssize_t cols) {
   const py::array a = checkedArray(value, name, cols, "fiu", "an array of real numbers");
   auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
@@ -350,7 +350,7 @@ py::array_t<double, py::array::c_style> floatRows(const py::handle& value, const
   return rows;
 }
 
-std::vector<std::uint32_t> indexRows(const py::handle& value, const char* name, py::ssize_t cols,
+std::vector<std::uint32_t> indexRows(const py::object& value, const char* name, py::ssize_t cols,
                                      std::uint64_t bound) {
   const py::array a = checkedArray(value, name, cols, "iu", "an array of integers");
   const auto wide = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a);
@@ -375,8 +375,8 @@ std::vector<Vec3> points(const py::array_t<double, py::array::c_style>& rows) {
   return out;
 }
 
-Mesh meshFromArrays(const py::handle& vertices, const py::handle& triangles,
-                    const py::handle& normals) {
+Mesh meshFromArrays(const py::object& vertices, const py::object& triangles,
+                    const py::object& normals) {
   const auto v = floatRows(vertices, "vertices", 3);
   if (static_cast<std::uint64_t>(v.shape(0)) > std::numeric_limits<std::uint32_t>::max())
     badArgument("vertices", "more than 2^32 - 1 vertices");
@@ -414,8 +414,8 @@ void bindCore(py::module_& m) {
       "A triangle mesh. Its arrays view the library's buffers in place (read-only, no copy):\n"
       "positions (N, 3) float32, normals (N, 3) float32 or None, triangles (M, 3) uint32,\n"
       "patch_ids (M,) uint32 or None; `vertices` is positions as float64 (N, 3).")
-      .def(py::init([](const py::handle& vertices, const py::handle& triangles,
-                       const py::handle& normals) {
+      .def(py::init([](const py::object& vertices, const py::object& triangles,
+                       const py::object& normals) {
              return std::make_shared<Mesh>(meshFromArrays(vertices, triangles, normals));
            }),
            py::arg("vertices"), py::arg("triangles"), py::arg("normals") = py::none(),
@@ -534,7 +534,7 @@ void bindCore(py::module_& m) {
       py::arg("path"), "Reads and checks a model file of any type. Raises ModelError, FileError.");
   m.def(
       "parse_model",
-      [](const py::handle& text, const std::string& source) {
+      [](const py::object& text, const std::string& source) {
         return Model{std::make_shared<const AnyModel>(parseModel(jsonText(text, "model"), source)),
                      source};
       },
@@ -620,7 +620,7 @@ void bindCore(py::module_& m) {
            py::arg("model"), "Starts a session on a copy of `model`.")
       .def(
           "apply",
-          [](ModelSession& self, const py::handle& edit) {
+          [](ModelSession& self, const py::object& edit) {
             const std::string text = jsonText(edit, "edit");
             if (self.editable()) {
               const GroupedEdit e = parseEdit(text, *self.frames());
@@ -638,7 +638,7 @@ void bindCore(py::module_& m) {
           "Raises ModelError (the session unchanged) for an edit that is invalid.")
       .def(
           "transform",
-          [](ModelSession& self, const py::handle& map) {
+          [](ModelSession& self, const py::object& map) {
             self.transform(parseTransform(jsonText(map, "transform")));
           },
           py::arg("transform"),

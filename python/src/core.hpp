@@ -29,12 +29,12 @@ struct Model {
 /// Rows of a float array argument, checked: `name` is the argument's name in the ValueError
 /// raised for anything but a real (float or integer) array of shape (n, cols) with finite
 /// values. The result is C-contiguous float64 (a copy only where the input is not already).
-py::array_t<double, py::array::c_style> floatRows(const py::handle& value, const char* name,
+py::array_t<double, py::array::c_style> floatRows(const py::object& value, const char* name,
                                                   py::ssize_t cols);
 
 /// An integer array argument of shape (n, cols) (cols 0: one dimension) with every value in
 /// [0, bound), checked as floatRows does; the values as uint32.
-std::vector<std::uint32_t> indexRows(const py::handle& value, const char* name, py::ssize_t cols,
+std::vector<std::uint32_t> indexRows(const py::object& value, const char* name, py::ssize_t cols,
                                      std::uint64_t bound);
 
 /// The points of float rows as the library's vectors.
@@ -47,7 +47,7 @@ std::vector<Vec3> points(const py::array_t<double, py::array::c_style>& rows);
 /// `data` in place: it keeps `owner` (the Python object whose C++ value holds the buffer)
 /// alive as its base.
 template <class T>
-py::array viewRows(const T* data, std::size_t rows, std::size_t cols, const py::handle& owner) {
+py::array viewRows(const T* data, std::size_t rows, std::size_t cols, const py::object& owner) {
   std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(rows)}, strides;
   if (cols > 0) {
     shape.push_back(static_cast<py::ssize_t>(cols));
@@ -60,8 +60,8 @@ py::array viewRows(const T* data, std::size_t rows, std::size_t cols, const py::
 }
 
 /// The mesh of (vertices, triangles[, normals]) arrays, every argument checked.
-Mesh meshFromArrays(const py::handle& vertices, const py::handle& triangles,
-                    const py::handle& normals);
+Mesh meshFromArrays(const py::object& vertices, const py::object& triangles,
+                    const py::object& normals);
 
 /// The part of the module in tools.cpp: compare, slice, rebuild's steps, export.
 void bindTools(py::module_& m);

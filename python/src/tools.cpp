@@ -59,8 +59,8 @@ py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
 
 /// The slicing options of `slice` and `rebuild` (their --axis, --count, --range, --near,
 /// --track), checked before any work.
-SliceOptions sliceOptions(const std::string& axis, std::uint32_t count, const py::handle& range,
-                          const py::handle& near, bool track) {
+SliceOptions sliceOptions(const std::string& axis, std::uint32_t count, const py::object& range,
+                          const py::object& near, bool track) {
   SliceOptions slice;
   const std::optional<Axis> parsed = parseAxis(axis);
   if (!parsed) badArgument("axis", "'" + axis + "' is not x, y or z");
@@ -229,8 +229,8 @@ void bindTools(py::module_& m) {
         "(the keys of `pdesurf compare --json`). The GIL is released meanwhile.");
   m.def(
       "slice_mesh",
-      [](const Mesh& mesh, const std::string& axis, std::uint32_t count, const py::handle& range,
-         const py::handle& near, bool track) {
+      [](const Mesh& mesh, const std::string& axis, std::uint32_t count, const py::object& range,
+         const py::object& near, bool track) {
         const SliceOptions options = sliceOptions(axis, count, range, near, track);
         std::vector<MeshSection> sections;
         {
@@ -261,7 +261,7 @@ void bindTools(py::module_& m) {
   m.def(
       "tube_layout",
       [](const Mesh& mesh, std::uint32_t rings, std::uint32_t sectors, const std::string& axis,
-         const py::handle& range, const py::handle& near, bool track, const std::string& source) {
+         const py::object& range, const py::object& near, bool track, const std::string& source) {
         if (rings < 1 || rings > 1000) badArgument("tube", "RINGS must be 1 to 1000");
         if (sectors < 3 || sectors > 1000)
           badArgument("tube", "SECTORS must be 3 to 1000 (two would join along both sides)");
@@ -294,7 +294,7 @@ void bindTools(py::module_& m) {
       py::arg("model"), py::arg("name"), "A vertex-frame model with another name.");
   m.def(
       "storage_bytes",
-      [](const py::handle& value) -> std::size_t {
+      [](const py::object& value) -> std::size_t {
         if (py::isinstance<Mesh>(value)) return storageBytes(value.cast<const Mesh&>());
         const Model& model = value.cast<const Model&>();
         if (const auto* f = std::get_if<VertexFrameModel>(model.model.get()))
@@ -308,8 +308,8 @@ void bindTools(py::module_& m) {
       "vertex-frames or cross-sections model, or a mesh.");
   m.def(
       "rebuild_sections",
-      [](const Mesh& mesh, const std::string& axis, std::uint32_t count, const py::handle& range,
-         const py::handle& near, bool track, std::uint32_t modes, std::uint32_t points, double a,
+      [](const Mesh& mesh, const std::string& axis, std::uint32_t count, const py::object& range,
+         const py::object& near, bool track, std::uint32_t modes, std::uint32_t points, double a,
          const std::string& ends, bool exact, const std::string& name, const std::string& source) {
         if (count < 2) badArgument("count", "a chain needs at least 2 sections");
         return rebuildSections(mesh, sliceOptions(axis, count, range, near, track), modes, points,
