@@ -48,17 +48,6 @@ struct RebuildUsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Rows per patch and columns around v for measuring a chain against its mesh: about 256
-/// rows over the chain and 256 columns, so that the tessellation's own chord error (below
-/// 1e-4 of a section's radius for 8 modes) stays far below the distances measured.
-SpectralTessellateOptions measureOptions(std::size_t patches) {
-  SpectralTessellateOptions o;
-  o.uResolution =
-      static_cast<std::uint32_t>(std::max<std::size_t>(3, (256 + patches - 1) / patches + 1));
-  o.vResolution = 256;
-  return o;
-}
-
 /// The loft's triangulation lies within this fraction of the part's diagonal of the loft
 /// surface: 0.01 %, a tenth of the smallest distances compared (0.1 % and up).
 constexpr double kLoftDeflection = 1e-4;
@@ -244,7 +233,7 @@ int RebuildCommand::runCrossSections() const {
                   sections.size(), axis, sections.front().coordinate, sections.back().coordinate);
   t0 = Clock::now();
   const Mesh part = sectionedPart(mesh, options.slice.axis, sections);
-  const Mesh surface = tessellate(rebuilt.chain, measureOptions(rebuilt.chain.patches.size()));
+  const Mesh surface = tessellate(rebuilt.chain, chainMeasureOptions(rebuilt.chain.patches.size()));
   DistanceOptions distanceOptions;
   distanceOptions.samples = samples;
   const MeshDistance d = namingMesh(

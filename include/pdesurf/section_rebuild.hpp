@@ -4,6 +4,7 @@
 // `"cross-sections"` model. docs/rebuild.md shows the command and its accuracy.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -48,6 +49,12 @@ struct SectionRebuild {
 /// than M modes need (2M + 1: more modes would fit the straight edges between its points,
 /// not the surface); std::invalid_argument for bad options.
 SectionRebuild rebuildFromSections(const Mesh& mesh, const SectionRebuildOptions& options);
+
+/// Rows per patch and columns around v at which a rebuilt chain is tessellated to measure it
+/// against its mesh (`pdesurf rebuild --as cross-sections`, the Python package's rebuild):
+/// about 256 rows over the chain and 256 columns, so that the tessellation's own chord error
+/// (below 1e-4 of a section's radius for 8 modes) stays far below the distances measured.
+SpectralTessellateOptions chainMeasureOptions(std::size_t patches);
 
 /// The surface of `mesh` that the sections rebuild: the triangles between the first and the
 /// last plane (clipped to them) that are connected, within that slab, to the kept loops.

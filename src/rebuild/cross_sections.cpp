@@ -71,6 +71,14 @@ bool commonEdge(const ClipPoint& p, const ClipPoint& q, std::uint32_t& a, std::u
 
 }  // namespace
 
+SpectralTessellateOptions chainMeasureOptions(std::size_t patches) {
+  SpectralTessellateOptions o;
+  o.uResolution =
+      static_cast<std::uint32_t>(std::max<std::size_t>(3, (256 + patches - 1) / patches + 1));
+  o.vResolution = 256;
+  return o;
+}
+
 Mesh sectionedPart(const Mesh& mesh, Axis axis, std::span<const MeshSection> sections) {
   if (sections.empty()) throw std::invalid_argument("no sections to take a part of the mesh by");
   const int k = static_cast<int>(axis);

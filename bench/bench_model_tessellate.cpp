@@ -1,0 +1,22 @@
+// A model file's tessellation through the model layer, as the CLI's build and the Python
+// package's Surface.tessellate call it: the C++ side of bench/python_overhead.py's ratio
+// (docs/performance.md, "The Python package").
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "pdesurf/model_io.hpp"
+
+namespace {
+
+void BM_TessellateMug(benchmark::State& state) {
+  const pdesurf::SolvedModel solved =
+      pdesurf::loadAndSolve(std::string(PDESURF_SOURCE_DIR) + "/examples/mug.json");
+  const pdesurf::TessellateOptions options{static_cast<std::uint32_t>(state.range(0))};
+  for (auto _ : state) benchmark::DoNotOptimize(pdesurf::tessellate(solved, options));
+}
+BENCHMARK(BM_TessellateMug)->Arg(17)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
