@@ -165,7 +165,7 @@ def _pair(value, name, what):
 
 def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=None, tube=None,
             iterations=30, tolerance=1e-3, smoothness=1e-5, fit_samples=9, prevent_folds=False,
-            fit_shape=False, resolution=17, samples=100000, axis="z", count=25, range=None,
+            fold_weight=1e-5, fit_shape=False, resolution=17, samples=100000, axis="z", count=25, range=None,
             near=None, track=False, modes=8, points=128, a=1.0, ends="natural", exact=False,
             name=None, progress=None):
     """Rebuilds a mesh as a model, as `pdesurf rebuild` does -> (model, report).
@@ -174,7 +174,7 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     None). kind="vertex-frames" fits a layout of frames, one of grid=(U, V) (a grid on a
     disk-like mesh), layout=QUADS_FILE (one frame per quad) or tube=(RINGS, SECTORS) (the
     part chosen by axis, range, near, track), with iterations, tolerance, smoothness,
-    fit_samples, prevent_folds, fit_shape as the CLI's options; progress(iteration), if
+    fit_samples, prevent_folds, fold_weight (--fold-weight), fit_shape as the CLI's options; progress(iteration), if
     given, is called after each iteration. kind="cross-sections" slices the mesh (axis, count,
     range, near, track), fits each section by `modes` Fourier modes over `points` points and
     joins them by the C4 chain (a, ends: "natural" or "estimated", exact).
@@ -220,7 +220,7 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
         stem = _pathlib.PurePath(source).stem if source[0] != "<" else "mesh"
         start = _core.with_name(start, name or f"{stem} (vertex frames)")
         model, its, stop = _core.fit(start, mesh, iterations, tolerance, smoothness, fit_samples,
-                                     prevent_folds, fit_shape, progress)
+                                     prevent_folds, fold_weight, fit_shape, progress)
         report.update(iterations=its, stop_reason=stop, storage_bytes=_core.storage_bytes(model))
         measured, reference = model.solve().tessellate(resolution), mesh
     else:

@@ -122,19 +122,21 @@ py::dict iterationDict(const FitIteration& it) {
 }
 
 py::tuple fit(const Model& start, const Mesh& mesh, std::uint32_t iterations, double tolerance,
-              double smoothness, std::uint32_t samples, bool preventFolds, bool fitShape,
-              const py::object& progress) {
+              double smoothness, std::uint32_t samples, bool preventFolds, double foldWeight,
+              bool fitShape, const py::object& progress) {
   const VertexFrameModel& layout = framesOf(start, "start");
   if (samples == 1 || samples == 2 || samples > 65)
     badArgument("fit_samples", "must be 0 (automatic) or 3 to 65");
   if (!(tolerance >= 0.0 && tolerance <= 1.0)) badArgument("tolerance", "must be in [0, 1]");
   if (!(smoothness >= 0.0 && smoothness <= 1e6)) badArgument("smoothness", "must be in [0, 1e6]");
+  if (!(foldWeight >= 0.0 && foldWeight <= 1.0)) badArgument("fold_weight", "must be in [0, 1]");
   FitOptions options;
   options.maxIterations = iterations;
   options.tolerance = tolerance;
   options.smoothness = smoothness;
   options.samplesPerSide = samples;
   options.preventFolds = preventFolds;
+  options.conformalWeight = foldWeight;
   options.fitShape = fitShape;
   if (!progress.is_none())
     options.onIteration = [&](const FitIteration& it) {
@@ -279,7 +281,8 @@ void bindTools(py::module_& m) {
       "A tube of frames on a part of the mesh -> (layout, part). Raises LayoutError.");
   m.def("fit", &fit, py::arg("start"), py::arg("mesh"), py::arg("iterations") = 30,
         py::arg("tolerance") = 1e-3, py::arg("smoothness") = 1e-5, py::arg("fit_samples") = 9,
-        py::arg("prevent_folds") = false, py::arg("fit_shape") = false,
+        py::arg("prevent_folds") = false, py::arg("fold_weight") = FitOptions{}.conformalWeight,
+        py::arg("fit_shape") = false,
         py::arg("progress") = py::none(),
         "Fits a layout's vertices (and with fit_shape its forces, a1, a2) to a mesh ->\n"
         "(model, iterations, stop_reason); progress(iteration) is called after each. The GIL\n"

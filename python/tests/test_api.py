@@ -216,6 +216,21 @@ def test_rebuild_vertex_frames_is_the_cli_rebuild(layout, cgal_mesh, tmp_path):
     assert ("part" in report) == (layout == "tube")
 
 
+def test_rebuild_fold_weight_is_the_cli_option(cgal_mesh, tmp_path):
+    # fold_weight=0 (the distances alone) gives the model `--fold-weight 0` gives, and not
+    # the default's: the keyword reaches the fit.
+    mesh = cgal_mesh("three_peaks.off")
+    out = tmp_path / "plain.json"
+    cli("rebuild", mesh, "--as", "vertex-frames", "--grid", 3, 3, "--iterations", 2,
+        "--fold-weight", 0, "-o", out)
+    plain = pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, fold_weight=0)[0]
+    default = pdesurf.rebuild(mesh, grid=(3, 3), iterations=2)[0]
+    assert plain.to_json() == out.read_text()
+    assert default.to_json() != plain.to_json()
+    with pytest.raises(ValueError, match="fold_weight"):
+        pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, fold_weight=-1)
+
+
 def test_more_frames_fit_closer(cgal_mesh):
     peaks = pdesurf.read_mesh(cgal_mesh("three_peaks.off"))
     coarse = pdesurf.rebuild(peaks.vertices, peaks.triangles, grid=(2, 2), iterations=4)[1]
