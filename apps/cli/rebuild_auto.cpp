@@ -41,12 +41,11 @@ void AutoLayoutArgs::add(CLI::App* cmd) {
                   "vertex-frames, automatic layout: pair (simplified triangles paired into quads, "
                   "each quad split into four, the others into three) or split (each simplified "
                   "triangle into three quads)")
-      ->check(CLI::IsMember({"split", "pair"}))
-      ->capture_default_str();
-  addInRange(cmd, "--crease-angle", creaseAngle,
-             "vertex-frames, automatic layout: edges whose triangles' normals differ by more "
-             "than this (degrees) stay on frame edges",
-             0.0, 180.0);
+      ->check(CLI::IsMember({"split", "pair"}));
+  cmd->add_option("--crease-angle", creaseAngle,
+                  "vertex-frames, automatic layout: edges whose triangles' normals differ by "
+                  "more than this (degrees, default 60) stay on frame edges")
+      ->check(CLI::Range(0.0, 180.0));
 }
 
 void AutoLayoutArgs::check() const {
@@ -58,7 +57,7 @@ void AutoLayoutArgs::check() const {
 AutoLayoutOptions AutoLayoutArgs::options() const {
   AutoLayoutOptions o;
   o.frames = frames != 0 ? frames : kDefaultAutoFrames;
-  o.creaseAngle = creaseAngle;
+  if (creaseAngle >= 0.0) o.creaseAngle = creaseAngle;
   o.construction =
       quads == "split" ? QuadConstruction::SplitTriangles : QuadConstruction::PairTriangles;
   return o;

@@ -18,14 +18,17 @@ namespace pdesurf::cli {
 inline constexpr std::uint32_t kDefaultAutoFrames = 200;
 
 struct AutoLayoutArgs {
-  std::uint32_t frames = 0;  ///< --frames N (0: not given)
-  std::string targetRms;     ///< --target-rms X, as given ("0.002" or "0.2%"; empty: not given)
-  std::string quads = "pair";
-  double creaseAngle = 60.0;
+  std::uint32_t frames = 0;   ///< --frames N (0: not given)
+  std::string targetRms;      ///< --target-rms X, as given ("0.002" or "0.2%"; empty: not given)
+  std::string quads;          ///< --quads pair|split (empty: not given, pair)
+  double creaseAngle = -1.0;  ///< --crease-angle (negative: not given, 60°)
 
   void add(CLI::App* cmd);
-  /// --frames or --target-rms given (they choose the automatic layout).
-  bool given() const { return frames != 0 || !targetRms.empty(); }
+  /// An option of the automatic layout given (--frames, --target-rms, --quads,
+  /// --crease-angle).
+  bool given() const {
+    return frames != 0 || !targetRms.empty() || !quads.empty() || creaseAngle >= 0.0;
+  }
   /// Throws UsageError for --frames with --target-rms.
   void check() const;
   /// The layout's options, with --frames (or the default).

@@ -325,8 +325,8 @@ int RebuildCommand::runVertexFrames() const {
   const bool automatic = layouts == 0;
   if (!automatic && args.automatic.given())
     throw RebuildUsageError(
-        "--frames and --target-rms size the automatic layout: not with --layout, --grid or "
-        "--tube");
+        "--frames, --target-rms, --quads and --crease-angle shape the automatic layout: not "
+        "with --layout, --grid or --tube");
   args.automatic.check();
   const bool search = automatic && !args.automatic.targetRms.empty();
   if (search) args.automatic.target();  // a bad target is a usage error before any work

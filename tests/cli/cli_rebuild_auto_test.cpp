@@ -74,7 +74,7 @@ TEST_F(CliRebuildAuto, UsageErrorsExitTwoAndWriteNothing) {
   for (const std::string& bad :
        {"--target-rms abc", "--target-rms 0", "--target-rms 150%", "--target-rms 1",
         "--frames 30 --target-rms 0.1", "--frames 30 --grid 2 2", "--target-rms 0.1 --tube 2 5",
-        "--grid 2 2 --tube 2 5"}) {
+        "--quads split --grid 2 2", "--crease-angle 30 --grid 2 2", "--grid 2 2 --tube 2 5"}) {
     SCOPED_TRACE(bad);
     const CliRun r = run("rebuild torus.obj --as vertex-frames " + bad + " -o m.json");
     EXPECT_EQ(r.code, 2) << r.err;
