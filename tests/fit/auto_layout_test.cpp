@@ -35,9 +35,17 @@ constexpr double kOnSurface = 5e-3;
 /// of the tube's girth).
 constexpr std::uint32_t kFoldFreeFrames = 400;
 
+/// A frame on a cylinder's side has a normal within 30° of horizontal (|n_z| < sin 30°), one
+/// on a cap within 30° of vertical; a frame across a rim would lie between (about 45°).
+constexpr double kSideways = 0.5, kUpright = 0.866;
+
 /// The share of the surface samples a layout of paired triangles may fold over: none on the
 /// sphere, 124 of 34,992 on the tube and 46 of 34,668 on the torus (docs/rebuild.md, Limits).
 constexpr double kLayoutFoldAllowance = 0.005;
+
+/// Fit iterations in the never-worse test on the closed-form shapes (the same for every
+/// count; half the default, to keep the test quick).
+constexpr std::uint32_t kQuickIterations = 15;
 
 /// The frame counts the tests ask for: three, growing.
 constexpr std::uint32_t kCounts[] = {60, 120, 240};
@@ -136,7 +144,9 @@ TEST(AutoLayout, MoreFramesNeverFitWorse) {
     for (std::uint32_t n : kCounts) {
       AutoLayoutOptions o;
       o.frames = n;
-      const AutoFit f = fitAutoLayout(s.mesh, o, {}, 17, {}, s.name);
+      FitOptions fit;
+      fit.maxIterations = kQuickIterations;
+      const AutoFit f = fitAutoLayout(s.mesh, o, fit, 17, {}, s.name);
       const double rms = rmsOf(f.distance);
       EXPECT_LE(rms, previous * (1 + kNeverWorseSlack)) << n << " frames";
       previous = rms;
@@ -163,6 +173,34 @@ TEST(AutoLayout, TwoComponentsMakeOneModelCoveringBoth) {
   const FitResult fit = fitVertexFrames(a.model, two);
   EXPECT_EQ(fit.iterations.front().measure.foldedSamples, 0u);
   EXPECT_LT(fit.iterations.back().measure.rms(), fit.iterations.front().measure.rms());
+}
+
+TEST(AutoLayout, KeepsACylindersRimsOnFrameEdges) {
+  // A capped cylinder: its two rims are creases (90°). A frame on the side faces sideways, a
+  // frame on a cap up or down; a frame spanning a rim would face half way between.
+  testing::CylinderOptions c;
+  c.segments = 64;
+  const Mesh cylinder = testing::cylinderMesh(c);
+  for (QuadConstruction q : {QuadConstruction::SplitTriangles, QuadConstruction::PairTriangles}) {
+    AutoLayoutOptions o;
+    o.frames = 120;
+    o.construction = q;
+    const AutoLayout a = autoLayout(cylinder, o, "cylinder");
+    EXPECT_EQ(a.creaseEdges, 2u * 64u);  // both rims, every edge of them
+    int sideFrames = 0, capFrames = 0;
+    for (const Frame& f : a.model.frames) {
+      const auto& v = f.vertices;
+      const Vec3 n = (a.model.vertices[v[4]] - a.model.vertices[v[0]])
+                         .cross(a.model.vertices[v[6]] - a.model.vertices[v[2]])
+                         .normalized();
+      EXPECT_TRUE(std::abs(n.z()) < kSideways || std::abs(n.z()) > kUpright)
+          << "a frame spans a rim: its normal " << n.transpose();
+      sideFrames += std::abs(n.z()) < kSideways;
+      capFrames += std::abs(n.z()) > kUpright;
+    }
+    EXPECT_GT(sideFrames, 0);
+    EXPECT_GT(capFrames, 0);
+  }
 }
 
 TEST(AutoLayout, BadMeshesAreRefusedWithTheReason) {
