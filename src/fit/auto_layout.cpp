@@ -266,7 +266,7 @@ std::vector<std::vector<std::uint32_t>> polygons(const SurfaceMesh& sm, const Cr
     if (sm.is_border(e)) continue;
     const auto h = sm.halfedge(e);
     if (creases.has(sm.source(h), sm.target(h))) continue;
-    // h runs a -> c in face (a c b)... the quad is a, b', c, d' round the two faces.
+    // h runs a -> c in the face (a c d); its opposite in (c a b): the quad is a b c d.
     const VertexIndex a = sm.source(h), c = sm.target(h);
     const VertexIndex d = sm.target(sm.next(h)), b = sm.target(sm.next(sm.opposite(h)));
     const std::array<Vec3, 4> q{toVec(sm.point(a)), toVec(sm.point(b)), toVec(sm.point(c)),
