@@ -122,6 +122,7 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
   cmd->add_flag("--fit-shape", fitShape,
                 "vertex-frames: after the vertices, fit a whole-frame force, a1 and a2 per frame "
                 "too (up to --iterations more iterations; more storage, a lower RMS)");
+  automatic.add(cmd);
 }
 
 CLI::App* RebuildCommand::add(CLI::App& app) {
@@ -312,9 +313,20 @@ int RebuildCommand::runCrossSections() const {
 int RebuildCommand::runVertexFrames() const {
   const VertexFrameRebuildArgs& args = vertexFrames;
   if (outPath.empty()) throw RebuildUsageError("--as vertex-frames: -o MODEL.json is required");
-  if (int(!args.layoutPath.empty()) + int(!args.grid.empty()) + int(!args.tube.empty()) != 1)
+  const int layouts =
+      int(!args.layoutPath.empty()) + int(!args.grid.empty()) + int(!args.tube.empty());
+  if (layouts > 1)
     throw RebuildUsageError(
-        "--as vertex-frames: give one of --layout QUADS, --grid U V and --tube RINGS SECTORS");
+        "--as vertex-frames: give one of --layout QUADS, --grid U V and --tube RINGS SECTORS "
+        "(or none of them: the automatic layout)");
+  const bool automatic = layouts == 0;
+  if (!automatic && args.automatic.given())
+    throw RebuildUsageError(
+        "--frames, --target-rms, --quads and --crease-angle shape the automatic layout: not "
+        "with --layout, --grid or --tube");
+  args.automatic.check();
+  const bool search = automatic && !args.automatic.targetRms.empty();
+  if (search) args.automatic.target();  // a bad target is a usage error before any work
   if (!args.tube.empty() && args.tube[1] < 3)
     throw RebuildUsageError(
         "--tube: a tube needs at least 3 sectors round it (two would join along both sides)");
@@ -329,6 +341,8 @@ int RebuildCommand::runVertexFrames() const {
   VertexFrameModel layout;
   if (!args.layoutPath.empty()) {
     layout = quadLayout(readPolygonMesh(args.layoutPath), args.layoutPath);
+  } else if (automatic) {
+    if (!search) layout = automaticLayout(args.automatic, mesh, meshPath, quiet);
   } else if (!args.grid.empty()) {
     layout = gridLayout(mesh, {args.grid[0], args.grid[1]}, meshPath);
   } else {
@@ -366,8 +380,11 @@ int RebuildCommand::runVertexFrames() const {
         m.foldedSamples, m.samples);
   };
   t0 = Clock::now();
-  const FitResult fitted =
-      namingMesh(meshPath, "", [&] { return fitVertexFrames(layout, mesh, options); });
+  const FitResult fitted = namingMesh(meshPath, "", [&] {
+    return search ? searchAutomaticLayout(args.automatic, mesh, meshPath, options, resolution,
+                                          quiet, layout)
+                  : fitVertexFrames(layout, mesh, options);
+  });
   const double fitMs = msSince(t0);
 
   writeFileAtomically(outPath, serializeVertexFrameModel(fitted.model));
@@ -388,6 +405,7 @@ int RebuildCommand::runVertexFrames() const {
   printNormals(normals);
   fmt::print("storage        {} bytes (numbers to six significant digits)\n",
              storageBytes(fitted.model));
+  if (automatic) printStorageAgainstMesh(fitted.model, mesh);
   return 0;
 }
 

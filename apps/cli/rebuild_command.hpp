@@ -10,10 +10,12 @@
 #include <CLI/CLI.hpp>
 
 #include "pdesurf/mesh_slice.hpp"
+#include "rebuild_auto.hpp"
 
 namespace pdesurf::cli {
 
-/// `--as vertex-frames`: a layout (a quad mesh, or a U × V grid on a disk) fitted to the mesh.
+/// `--as vertex-frames`: a layout (a quad mesh, a U × V grid on a disk, a tube, or the
+/// automatic layout) fitted to the mesh.
 struct VertexFrameRebuildArgs {
   std::string layoutPath;
   std::vector<std::uint32_t> grid;  ///< U V
@@ -24,6 +26,7 @@ struct VertexFrameRebuildArgs {
   std::uint32_t samples = 9;  ///< surface samples per patch side (0: automatic)
   bool preventFolds = false;  ///< refuse steps that fold more of the surface over
   bool fitShape = false;      ///< then fit a force, a1 and a2 per frame too
+  AutoLayoutArgs automatic;   ///< without --layout, --grid and --tube
   /// Weight of the fold-free term (0: off; FitOptions::conformalWeight).
   double conformalWeight = 1e-5;
 

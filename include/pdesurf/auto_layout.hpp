@@ -1,0 +1,110 @@
+// An automatic layout of vertex frames for any triangle mesh (closed, several boundary loops,
+// handles, several components), adaptive to the mesh's curvature, and the search for the
+// smallest one whose fitted model reaches a target RMS (docs/rebuild.md, "The automatic
+// layout").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "pdesurf/mesh.hpp"
+#include "pdesurf/mesh_distance.hpp"
+#include "pdesurf/rebuild.hpp"
+#include "pdesurf/vertex_frames.hpp"
+
+namespace pdesurf {
+
+/// How the simplified triangles become quads (each quad one frame).
+enum class QuadConstruction {
+  /// Every triangle split into three quads (its centroid and edge midpoints): 3 frames a
+  /// triangle.
+  SplitTriangles,
+  /// Triangles paired across their shared edges into quads where the quad is convex and
+  /// close to square (greedily, the best pairs first); then every quad split into four and
+  /// every unpaired triangle into three: about 2 frames a triangle.
+  PairTriangles,
+};
+
+struct AutoLayoutOptions {
+  /// About this many frames (at least the fewest the mesh's topology allows).
+  std::uint32_t frames = 200;
+  /// Edges whose two triangles' normals differ by more than this angle (degrees) are creases
+  /// and stay on frame edges (chains of them shorter than kMinCreaseChain of the diagonal
+  /// are taken for noise and ignored). Boundary edges are always kept on frame edges.
+  double creaseAngle = 60.0;
+  /// Pairing makes the smaller model at equal RMS (docs/rebuild.md, "Split or pair").
+  QuadConstruction construction = QuadConstruction::PairTriangles;
+};
+
+/// Crease chains shorter than this fraction of the bounding-box diagonal are taken for noise:
+/// on a scan such as CGAL's lion-head, a 2 % bound kept 156 edges of its mane's grooves as
+/// creases (they stalled the simplification at 57 triangles when 40 were asked for), 10 %
+/// keeps 99 of them and the simplification reaches its target; a CAD part's creases
+/// (fandisk_large.off) run longer.
+inline constexpr double kMinCreaseChain = 0.1;
+
+struct AutoLayout {
+  /// Frames from quadLayout over `quads`, every vertex then put on the mesh (its closest
+  /// point, where the mesh there faces as the frames round it do).
+  VertexFrameModel model;
+  PolygonMesh quads;                 ///< the quads the frames come from
+  std::size_t baseTriangles = 0;     ///< triangles of the simplified mesh
+  std::size_t components = 0;        ///< connected components of the mesh (one model for all)
+  std::size_t creaseEdges = 0;       ///< crease and boundary edges of the input kept on edges
+  std::size_t skippedTriangles = 0;  ///< triangles without area, left out
+};
+
+/// Simplifies `mesh` by CGAL's edge collapse with Garland–Heckbert plane quadrics to about
+/// frames / 3 triangles (frames / 2 when pairing), creases and boundaries kept on edges, no
+/// triangle turned over; makes quads (`construction`) and frames from them. The frames face
+/// as the mesh's triangles do. Throws LayoutError naming `source` when the mesh has no
+/// triangle with area, or a triangle cannot join the others (an edge of three triangles, a
+/// vertex where two fans meet, triangles oriented against their neighbours).
+AutoLayout autoLayout(const Mesh& mesh, const AutoLayoutOptions& options,
+                      const std::string& source);
+
+/// An automatic layout fitted and measured as `compare` measures it.
+struct AutoFit {
+  AutoLayout layout;
+  FitResult fit;
+  MeshDistance distance;  ///< the fitted model's tessellation against the mesh, both ways
+  /// The larger of the two one-way RMS values, relative to the diagonal.
+  double worseRms() const;
+};
+
+struct TargetSearchOptions {
+  double targetRms = 0.002;  ///< both one-way RMS values at most this (of the diagonal)
+  AutoLayoutOptions layout;  ///< its `frames` is the first count tried
+  /// The frame count grows by this factor until the target is reached, then is bisected
+  /// until the counts that miss and reach it are within `precision` of each other.
+  double growth = 2.0;
+  double precision = 0.15;
+  std::uint32_t maxFrames = 20000;  ///< no layout larger than this is tried
+  FitOptions fit;
+  std::uint32_t resolution = 17;  ///< samples per patch side for the measure
+  DistanceOptions distance;
+  /// Called after each trial, with its frame request and result.
+  std::function<void(std::uint32_t requested, const AutoFit&)> onTrial;
+};
+
+struct TargetSearch {
+  AutoFit best;  ///< the smallest trial that reached the target, else the closest one
+  bool reached = false;
+  std::uint32_t trials = 0;
+};
+
+/// One automatic layout of about `options.frames` frames, fitted and measured.
+AutoFit fitAutoLayout(const Mesh& mesh, const AutoLayoutOptions& layout, const FitOptions& fit,
+                      std::uint32_t resolution, const DistanceOptions& distance,
+                      const std::string& source);
+
+/// The smallest automatic layout whose fitted model reaches the target both ways: the frame
+/// count grows geometrically from `options.layout.frames` until a fit reaches it (or the
+/// layout stops growing: the mesh is simplified no more), then is bisected.
+TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& options,
+                             const std::string& source);
+
+}  // namespace pdesurf

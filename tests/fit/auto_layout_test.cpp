@@ -1,0 +1,266 @@
+// The automatic layout: any topology (closed, two boundary loops, genus 1, two components),
+// a valid manifold frame model with no folds, fits that never get worse with more frames,
+// and the search for a target RMS.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "pdesurf/auto_layout.hpp"
+#include "pdesurf/mesh_distance.hpp"
+#include "pdesurf/mesh_io.hpp"
+#include "pdesurf/model_io.hpp"
+#include "support/cgal_data.hpp"
+#include "support/test_meshes.hpp"
+#include "support/torus_mesh.hpp"
+
+namespace pdesurf {
+namespace {
+
+/// "Never worse": a layout with more frames may fit worse than one with fewer by this fraction
+/// of the RMS only (the sampling noise of the measure), never more.
+constexpr double kNeverWorseSlack = 0.02;
+
+/// Every frame corner lies on the mesh, so within the meshes' chord error of the exact
+/// surface (below 1 - cos(π/24) ≈ 3.4e-3 of the radius for the meshes below); the middle of
+/// a simplified triangle left off the mesh would lie 0.1 and more inside.
+constexpr double kOnSurface = 5e-3;
+
+/// The layouts checked for folds: about this many frames (the torus's layout folds at 150
+/// frames, 7 of 12,150 samples split and 78 of 12,798 paired, where a frame spans a quarter
+/// of the tube's girth).
+constexpr std::uint32_t kFoldFreeFrames = 400;
+
+/// A frame on a cylinder's side has a normal within 30° of horizontal (|n_z| < sin 30°), one
+/// on a cap within 30° of vertical; a frame across a rim would lie between (about 45°).
+constexpr double kSideways = 0.5, kUpright = 0.866;
+
+/// The share of the surface samples a layout of paired triangles may fold over: none on the
+/// sphere, 124 of 34,992 on the tube and 46 of 34,668 on the torus (docs/rebuild.md, Limits).
+constexpr double kLayoutFoldAllowance = 0.005;
+
+/// Fit iterations in the never-worse test on the closed-form shapes (the same for every
+/// count; half the default, to keep the test quick).
+constexpr std::uint32_t kQuickIterations = 15;
+
+/// The frame counts the tests ask for: three, growing.
+constexpr std::uint32_t kCounts[] = {60, 120, 240};
+
+struct Named {
+  const char* name;
+  Mesh mesh;
+  int euler;                                      ///< V - E + F of the surface
+  std::function<double(const Vec3&)> offSurface;  ///< distance from the exact surface
+};
+
+std::vector<Named> shapes() {
+  // An open tube r(z) = 1 + ¼ sin(πz/2), z in [0, 2]: a cylinder's rings scaled (curved
+  // along z, so no strip of it is flat).
+  testing::CylinderOptions c;
+  c.caps = false;
+  c.segments = 48;
+  c.rings = 24;
+  auto radius = [](double z) { return 1.0 + 0.25 * std::sin(M_PI * z / 2); };
+  Mesh tube = testing::cylinderMesh(c);
+  for (std::size_t v = 0; v < tube.vertexCount(); ++v)
+    for (int k = 0; k < 2; ++k)
+      tube.positions[3 * v + k] *= static_cast<float>(radius(tube.positions[3 * v + 2]));
+  return {{"sphere", testing::sphereMesh(1.0, 48, 24), 2,
+           [](const Vec3& p) { return std::abs(p.norm() - 1.0); }},
+          {"open tube", std::move(tube), 0,
+           [=](const Vec3& p) { return std::abs(p.head<2>().norm() - radius(p.z())); }},
+          {"torus", testing::torusMesh(1.0, 0.35, 64, 24), 0, [](const Vec3& p) {
+             return std::abs(Eigen::Vector2d(p.head<2>().norm() - 1.0, p.z()).norm() - 0.35);
+           }}};
+}
+
+/// Each frame side (corner, middle, corner) on one or two frames, and the Euler
+/// characteristic of the frames' corner quads (corners, sides, frames).
+int checkManifoldAndEuler(const VertexFrameModel& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> sides;
+  std::set<std::uint32_t> corners;
+  for (const Frame& f : m.frames) {
+    std::set<std::uint32_t> distinct(f.vertices.begin(), f.vertices.end());
+    EXPECT_EQ(distinct.size(), 8u);
+    for (int i = 0; i < 4; ++i) {
+      corners.insert(f.vertices[2 * i]);
+      ++sides[std::minmax(f.vertices[2 * i], f.vertices[(2 * i + 2) % 8])];
+    }
+  }
+  for (const auto& [side, n] : sides) EXPECT_LE(n, 2) << side.first << "-" << side.second;
+  return static_cast<int>(corners.size()) - static_cast<int>(sides.size()) +
+         static_cast<int>(m.frames.size());
+}
+
+double rmsOf(const MeshDistance& d) {
+  return std::sqrt(
+      0.5 * (d.aToB.rmsRelative * d.aToB.rmsRelative + d.bToA.rmsRelative * d.bToA.rmsRelative));
+}
+
+TEST(AutoLayout, LaysValidFrameModelsOnClosedOpenAndGenusOneMeshesWithoutFolds) {
+  for (const Named& s : shapes()) {
+    SCOPED_TRACE(s.name);
+    AutoLayoutOptions o;
+    o.frames = kFoldFreeFrames;
+    o.construction = QuadConstruction::SplitTriangles;
+    const AutoLayout split = autoLayout(s.mesh, o, s.name);
+    EXPECT_EQ(split.model.frames.size(), 3 * split.baseTriangles);  // three quads a triangle
+    // The simplification stops at frames / 3 triangles, or one below (a collapse on a closed
+    // mesh removes two).
+    EXPECT_NEAR(double(split.baseTriangles), std::round(o.frames / 3.0), 1.0);
+    o.construction = QuadConstruction::PairTriangles;  // the default
+    const AutoLayout a = autoLayout(s.mesh, o, s.name);
+    EXPECT_EQ(a.components, 1u);
+    // frames / 2 triangles, four frames a pair and three an unpaired triangle.
+    EXPECT_NEAR(double(a.baseTriangles), o.frames / 2.0, 1.0);
+    EXPECT_GE(a.model.frames.size(), 2 * a.baseTriangles);
+    EXPECT_LE(a.model.frames.size(), 3 * a.baseTriangles);
+    for (const AutoLayout* layout : {&split, &a}) {
+      // What model files accept, a manifold of frames with the input's topology.
+      EXPECT_NO_THROW(parseVertexFrameModel(serializeVertexFrameModel(layout->model), s.name));
+      EXPECT_EQ(checkManifoldAndEuler(layout->model), s.euler);
+      for (const Frame& frame : layout->model.frames)
+        for (int i = 0; i < 8; i += 2)
+          EXPECT_LT(s.offSurface(layout->model.vertices[frame.vertices[i]]), kOnSurface);
+      // The layout folds no sample over when split; pairs leave a few folded frames where
+      // the surface turns fastest (measured at the fit's iteration 0).
+      FitOptions measureOnly;
+      measureOnly.maxIterations = 0;
+      const FitMeasure m =
+          fitVertexFrames(layout->model, s.mesh, measureOnly).iterations[0].measure;
+      EXPECT_LE(m.foldedSamples, layout == &split ? 0.0 : kLayoutFoldAllowance * m.samples);
+    }
+  }
+}
+
+TEST(AutoLayout, MoreFramesNeverFitWorse) {
+  for (const Named& s : shapes()) {
+    SCOPED_TRACE(s.name);
+    double previous = 1e300;
+    for (std::uint32_t n : kCounts) {
+      AutoLayoutOptions o;
+      o.frames = n;
+      FitOptions fit;
+      fit.maxIterations = kQuickIterations;
+      const AutoFit f = fitAutoLayout(s.mesh, o, fit, 17, {}, s.name);
+      const double rms = rmsOf(f.distance);
+      EXPECT_LE(rms, previous * (1 + kNeverWorseSlack)) << n << " frames";
+      previous = rms;
+    }
+  }
+}
+
+TEST(AutoLayout, TwoComponentsMakeOneModelCoveringBoth) {
+  testing::CylinderOptions c;
+  c.offset = Eigen::Vector3d(4, 0, 0);
+  const Mesh two = testing::merged(testing::sphereMesh(1.0, 32, 16), testing::cylinderMesh(c));
+  AutoLayoutOptions o;
+  o.frames = 200;
+  o.construction = QuadConstruction::SplitTriangles;
+  const AutoLayout a = autoLayout(two, o, "two");
+  EXPECT_EQ(a.components, 2u);
+  // Frames on both: some vertex near the sphere, some on the capped cylinder.
+  int onSphere = 0, onCylinder = 0;
+  for (const Vec3& p : a.model.vertices) (p.x() < 2 ? onSphere : onCylinder) += 1;
+  EXPECT_GT(onSphere, 0);
+  EXPECT_GT(onCylinder, 0);
+  // The cylinder's rims are creases (90°): they stay on frame edges.
+  EXPECT_GT(a.creaseEdges, 0u);
+  const FitResult fit = fitVertexFrames(a.model, two);
+  EXPECT_EQ(fit.iterations.front().measure.foldedSamples, 0u);
+  EXPECT_LT(fit.iterations.back().measure.rms(), fit.iterations.front().measure.rms());
+}
+
+TEST(AutoLayout, KeepsACylindersRimsOnFrameEdges) {
+  // A capped cylinder: its two rims are creases (90°). A frame on the side faces sideways, a
+  // frame on a cap up or down; a frame spanning a rim would face half way between.
+  testing::CylinderOptions c;
+  c.segments = 64;
+  const Mesh cylinder = testing::cylinderMesh(c);
+  for (QuadConstruction q : {QuadConstruction::SplitTriangles, QuadConstruction::PairTriangles}) {
+    AutoLayoutOptions o;
+    o.frames = 120;
+    o.construction = q;
+    const AutoLayout a = autoLayout(cylinder, o, "cylinder");
+    EXPECT_EQ(a.creaseEdges, 2u * 64u);  // both rims, every edge of them
+    int sideFrames = 0, capFrames = 0;
+    for (const Frame& f : a.model.frames) {
+      const auto& v = f.vertices;
+      const Vec3 n = (a.model.vertices[v[4]] - a.model.vertices[v[0]])
+                         .cross(a.model.vertices[v[6]] - a.model.vertices[v[2]])
+                         .normalized();
+      EXPECT_TRUE(std::abs(n.z()) < kSideways || std::abs(n.z()) > kUpright)
+          << "a frame spans a rim: its normal " << n.transpose();
+      sideFrames += std::abs(n.z()) < kSideways;
+      capFrames += std::abs(n.z()) > kUpright;
+    }
+    EXPECT_GT(sideFrames, 0);
+    EXPECT_GT(capFrames, 0);
+  }
+}
+
+TEST(AutoLayout, BadMeshesAreRefusedWithTheReason) {
+  auto refused = [](const Mesh& m, const std::string& what) {
+    try {
+      autoLayout(m, {}, "bad.off");
+      ADD_FAILURE() << "not refused: " << what;
+    } catch (const LayoutError& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused(Mesh{}, "bad.off: the mesh has no triangles");
+  // Three triangles on one edge.
+  testing::MeshBuilder b;
+  for (auto [x, y, z] :
+       {std::array{0., 0., 0.}, {1., 0., 0.}, {0., 1., 0.}, {0., -1., 0.}, {0., 0., 1.}})
+    b.vertex(x, y, z);
+  b.triangle(0, 1, 2);
+  b.triangle(1, 0, 3);
+  b.triangle(0, 1, 4);
+  refused(b.mesh(), "triangle 2 (0 1 4) cannot join the others");
+  // Only triangles without area.
+  testing::MeshBuilder flat;
+  for (int i = 0; i < 3; ++i) flat.vertex(i, 0, 0);
+  flat.triangle(0, 1, 2);
+  flat.triangle(0, 0, 1);
+  refused(flat.mesh(), "none of the mesh's 2 triangles has an area");
+}
+
+TEST(AutoLayout, TargetRmsSearchReachesTheTargetWithTheSmallestLayoutItTried) {
+  const Mesh torus = testing::torusMesh(1.0, 0.35, 64, 24);
+  TargetSearchOptions o;
+  o.targetRms = 1e-3;
+  o.layout.frames = 24;
+  std::vector<std::pair<std::size_t, double>> trials;  // frames made, worse RMS
+  o.onTrial = [&](std::uint32_t, const AutoFit& f) {
+    trials.emplace_back(f.layout.model.frames.size(), f.worseRms());
+  };
+  const TargetSearch s = searchTargetRms(torus, o, "torus");
+  ASSERT_TRUE(s.reached);
+  EXPECT_LE(s.best.worseRms(), o.targetRms);
+  EXPECT_EQ(s.trials, trials.size());
+  // Every trial smaller than the answer missed the target.
+  for (const auto& [frames, rms] : trials)
+    if (frames < s.best.layout.model.frames.size()) EXPECT_GT(rms, o.targetRms) << frames;
+  EXPECT_GE(trials.size(), 2u);  // the first count missed: it grew, or bisected
+}
+
+TEST(AutoLayout, MoreFramesNeverFitThreePeaksWorse) {
+  const Mesh peaks = readMesh(testing::cgalData("three_peaks.off"));
+  double previous = 1e300;
+  for (std::uint32_t n : kCounts) {
+    AutoLayoutOptions o;
+    o.frames = n;
+    const AutoFit f = fitAutoLayout(peaks, o, {}, 17, {}, "three_peaks");
+    const double rms = rmsOf(f.distance);
+    EXPECT_LE(rms, previous * (1 + kNeverWorseSlack)) << n << " frames";
+    previous = rms;
+  }
+}
+
+}  // namespace
+}  // namespace pdesurf
