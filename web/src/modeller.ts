@@ -15,7 +15,7 @@ import type { Gizmo } from './gizmo';
 import { modelBox } from './viewport';
 import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
 import type { Studio } from './studio';
-import { addFrameEdit, extrudeEdit, framesEdit, splitEdit, toggled, weldEdit } from './structure';
+import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
 
@@ -40,6 +40,8 @@ export interface ModellerActions {
   scaleSelection(): void;
   rotateSelection(): void;
   toggleDrawForce(): void;
+  /** Select all, the inverse of the selection, or everything linked to it. */
+  select(how: 'all' | 'inverse' | 'linked'): void;
 }
 
 export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, refreshFiles: () => Promise<void>): ModellerActions {
@@ -73,7 +75,23 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     scaleSelection: () => {},
     rotateSelection: () => {},
     toggleDrawForce: () => {},
+    select: (how) => {
+      const model = store.state.model;
+      if (!model) return;
+      const picked = { vertices: store.state.selectedVertices, frames: store.state.selectedFrames };
+      const next = how === 'all' ? selectAll(model) : how === 'inverse' ? selectInverse(model, picked) : selectLinked(model, picked);
+      store.update(['selection', 'forces'], (s) => {
+        s.selectedVertices = next.vertices;
+        s.selectedVertex = next.vertices.length ? next.vertices[next.vertices.length - 1] : null;
+        s.selectedFrames = next.frames;
+        s.selectedForce = 0;
+      });
+      studio.say(`${next.vertices.length} vertices, ${next.frames.size} frames selected`);
+    },
   };
+  $('select-all').addEventListener('click', () => actions.select('all'));
+  $('select-inverse').addEventListener('click', () => actions.select('inverse'));
+  $('select-linked').addEventListener('click', () => actions.select('linked'));
   $('new-model').addEventListener('click', actions.newModel);
   $('extrude').addEventListener('click', actions.extrude);
   $('add-frame').addEventListener('click', actions.addFrame);
@@ -170,7 +188,7 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     const vertex = picker.vertexAt(model.vertices, ev.clientX, ev.clientY, SURFACE_VERTEX_PICK_PIXELS, size);
     if (vertex !== null) {
       const mode = ev.shiftKey ? 'toggle' : ev.ctrlKey || ev.metaKey ? 'remove' : null;
-      const next = mode ? toggled(store.state.selectedVertices, vertex, mode) : [vertex];
+      const next = mode ? toggledInStack(store.state.selectedVertices, vertex, coincidentWith(model, vertex), mode) : [vertex];
       store.update(['selection'], (s) => {
         s.selectedVertices = next;
         s.selectedVertex = next.length ? next[next.length - 1] : null;

@@ -172,6 +172,7 @@ export class Viewport {
       );
     }
     distance = Math.max(distance * 1.12, size * 0.1);
+    this.stopMotion();
     this.camera.position.copy(center).addScaledVector(toCamera, distance);
     this.camera.near = distance / 100;
     this.camera.far = distance * 100;
@@ -183,6 +184,16 @@ export class Viewport {
   }
 
   private fitted = false;
+
+  /** Ends what is left of an orbit's, pan's or zoom's damping (OrbitControls keeps turning
+   * the camera for a while after the pointer is released): a fit or a view preset right
+   * after an orbit must land where it was asked to, not be turned on by the rest of it. */
+  stopMotion(): void {
+    const damping = this.controls.enableDamping;
+    this.controls.enableDamping = false;
+    this.controls.update(); // without damping, update() applies and clears what is left
+    this.controls.enableDamping = damping;
+  }
 
   /** From the camera's target toward the camera (front-right above until a first fit). */
   viewDirection(): THREE.Vector3 {
