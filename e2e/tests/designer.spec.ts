@@ -275,3 +275,27 @@ test('X during a drag locks it to x, and a snap step rounds the move: the saved 
   expect(z).toBe(m.vertices[v][2]);
   expect((await studio.state()).undo).toBe(1);
 });
+
+test('a vertex dragged in the shaded surface view moves as its handle would: one undo step', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'single', 'shaded.json');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+  const m = await model(studio);
+  const v = m.frames[0].vertices[4];
+  const p = await hook<Point & { visible: boolean }>(page, 'vertexSurfaceScreen', v);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + 60, p.y, { steps: 6 }); // top view: screen right is +x
+  await page.mouse.up();
+  await settle(page);
+  await page.screenshot({ path: shot('designer-surface-drag.png') });
+  const now = (await model(studio)).vertices[v];
+  expect(now[0] - m.vertices[v][0]).toBeGreaterThan(0.05);
+  expect(Math.abs(now[1] - m.vertices[v][1])).toBeLessThan(0.02);
+  expect(Math.abs(now[2] - m.vertices[v][2])).toBeLessThan(0.02);
+  expect((await studio.state()).undo).toBe(1);
+  // The camera did not orbit: still the top view.
+  const cameras = await hook<Record<string, { direction: number[] }>>(page, 'cameras');
+  expect(cameras.surface.direction[2]).toBeGreaterThan(0.999);
+});

@@ -9,6 +9,7 @@ import { $ } from './dom';
 import { evaluateExpression } from './input';
 import type { Topic } from './store';
 import type { Studio } from './studio';
+import type { Viewport } from './viewport';
 import { coincidentWith, toggled, toggledInStack } from './structure';
 
 /** Puts each vertex of `moved` at its start `from[i]` offset by `d` in the store (one update,
@@ -40,7 +41,20 @@ const CLICK_PIXELS = 5;
 /** Above this many vertices the hover cursor is not computed (picking costs per move). */
 const HOVER_MAX_VERTICES = 20000;
 
-export function mountDragTool(studio: Studio): void {
+/** The handle drag, for the views that start one (the frame view here, the surface view in
+ * modeller.ts): the grabbed vertex moves in the plane through it facing that view's camera. */
+export interface DragTool {
+  /** Grabs `vertex` (and the selection it belongs to) for the pointer of `ev` in `view`. */
+  begin(view: Viewport, vertex: number, ev: PointerEvent): void;
+  /** Whether a drag of this pointer is in progress. */
+  dragging(pointer: number): boolean;
+  /** The pointer moved (a drag's step). */
+  move(ev: PointerEvent): void;
+  /** The pointer was released: the drag's gesture ends (one undo step). */
+  end(ev: PointerEvent): Promise<void>;
+}
+
+export function mountDragTool(studio: Studio): DragTool {
   const { store, frameView, pump } = studio;
   const canvas = frameView.renderer.domElement;
   /** A drag: the handle grabbed, and every vertex it moves with where it started. */
@@ -53,6 +67,8 @@ export function mountDragTool(studio: Studio): void {
     axis: 0 | 1 | 2 | null;
     /** Where the pointer was last. */
     at?: { x: number; y: number };
+    /** The view the drag is in (its camera's plane). */
+    view: Viewport;
   } | null = null;
   let press: { x: number; y: number; shift: boolean; ctrl: boolean } | null = null;
   let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;
@@ -62,6 +78,32 @@ export function mountDragTool(studio: Studio): void {
       s.selectedVertices = vertices;
       s.selectedVertex = vertices.length ? vertices[vertices.length - 1] : null;
     });
+
+  const tool: DragTool = {
+    begin(view, vertex, ev) {
+      const model = store.state.model;
+      if (!model) return;
+      view.controls.enabled = false; // the views' listeners run before their controls'
+      const current = store.state.selectedVertices;
+      const moved = current.includes(vertex) && current.length > 1 ? [...current] : [vertex];
+      if (moved.length === 1) selectVertices([vertex]);
+      drag = { vertex, pointer: ev.pointerId, moved, from: moved.map((v) => [...model.vertices[v]] as Vec3), axis: null, view };
+      studio.beginGesture('drag');
+      ev.preventDefault();
+    },
+    dragging: (pointer) => !!drag && drag.pointer === pointer,
+    move(ev) {
+      if (!drag || ev.pointerId !== drag.pointer || !store.state.model) return;
+      drag.at = { x: ev.clientX, y: ev.clientY };
+      dragTo(ev.clientX, ev.clientY);
+    },
+    async end(ev) {
+      if (!drag || ev.pointerId !== drag.pointer) return;
+      drag.view.controls.enabled = true;
+      drag = null;
+      await studio.endGesture();
+    },
+  };
 
   canvas.addEventListener('pointerdown', (ev) => {
     if (ev.button !== 0 || !store.state.model) return;
@@ -76,14 +118,8 @@ export function mountDragTool(studio: Studio): void {
       return;
     }
     if (vertex !== null) {
-      frameView.controls.enabled = false;
-      const current = store.state.selectedVertices;
-      const moved = current.includes(vertex) && current.length > 1 ? [...current] : [vertex];
-      if (moved.length === 1) selectVertices([vertex]);
-      drag = { vertex, pointer: ev.pointerId, moved, from: moved.map((v) => [...model.vertices[v]] as Vec3), axis: null };
+      tool.begin(frameView, vertex, ev);
       canvas.setPointerCapture(ev.pointerId);
-      studio.beginGesture('drag');
-      ev.preventDefault();
     } else if (modifier) {
       frameView.controls.enabled = false;
       const div = document.createElement('div');
@@ -120,9 +156,7 @@ export function mountDragTool(studio: Studio): void {
             : '';
       if (canvas.style.cursor !== cursor) canvas.style.cursor = cursor;
     }
-    if (!drag || ev.pointerId !== drag.pointer || !model) return;
-    drag.at = { x: ev.clientX, y: ev.clientY };
-    dragTo(ev.clientX, ev.clientY);
+    tool.move(ev);
   });
 
   /** Moves the dragged vertices for the pointer at (x, y): in the plane facing the camera, or
@@ -132,7 +166,7 @@ export function mountDragTool(studio: Studio): void {
     if (!drag) return;
     const { vertex, moved, from } = drag;
     const start = from[moved.indexOf(vertex)];
-    const target = drag.axis === null ? frameView.dragTarget(start, x, y) : frameView.axisTarget(start, drag.axis, x, y);
+    const target = drag.axis === null ? drag.view.dragTarget(start, x, y) : drag.view.axisTarget(start, drag.axis, x, y);
     if (!target) return;
     const d = snapped([target[0] - start[0], target[1] - start[1], target[2] - start[2]], snapStep());
     offsetVertices(studio, moved, from, d, ['vertex'], store.state.selectedVertex);
@@ -167,12 +201,7 @@ export function mountDragTool(studio: Studio): void {
   );
 
   async function endPress(ev: PointerEvent): Promise<void> {
-    if (drag && ev.pointerId === drag.pointer) {
-      drag = null;
-      frameView.controls.enabled = true;
-      await studio.endGesture();
-      return;
-    }
+    if (tool.dragging(ev.pointerId)) return tool.end(ev);
     if (box && ev.pointerId === box.pointer) {
       const opened = Math.hypot(ev.clientX - box.x, ev.clientY - box.y) >= CLICK_PIXELS;
       if (opened) {
@@ -213,4 +242,5 @@ export function mountDragTool(studio: Studio): void {
   }
   canvas.addEventListener('pointerup', (ev) => void endPress(ev));
   canvas.addEventListener('pointercancel', (ev) => void endPress(ev));
+  return tool;
 }

@@ -18,6 +18,7 @@ import type { Studio } from './studio';
 import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
+import type { DragTool } from './drag';
 
 /** The modeller's tools, for the browser tests (test-hooks.ts). */
 export const modellerTools: { gizmo?: Gizmo; forces?: ForcesTool } = {};
@@ -44,7 +45,12 @@ export interface ModellerActions {
   select(how: 'all' | 'inverse' | 'linked'): void;
 }
 
-export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, refreshFiles: () => Promise<void>): ModellerActions {
+export function mountModeller(
+  studio: Studio,
+  mayLeave: () => Promise<boolean>,
+  refreshFiles: () => Promise<void>,
+  dragTool?: DragTool,
+): ModellerActions {
   const { store, surfaceView } = studio;
 
   /** Sends a structure edit made from the selection (or says what to select). */
@@ -212,6 +218,31 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
       });
     });
   });
+
+  // A press on a vertex seen on the surface (within the pick radius, not hidden behind it)
+  // drags it as its handle in the frame view does, in the plane facing this view's camera:
+  // taken in the capture phase of the view's container, before the orbit controls.
+  if (dragTool) {
+    const container = surfaceView.container;
+    container.addEventListener(
+      'pointerdown',
+      (ev) => {
+        const model = store.state.model;
+        if (ev.button !== 0 || !model || ev.shiftKey || ev.ctrlKey || ev.metaKey) return;
+        const size = modelBox(model).getSize(new THREE.Vector3()).length();
+        const vertex = picker.vertexAt(model.vertices, ev.clientX, ev.clientY, SURFACE_VERTEX_PICK_PIXELS, size);
+        if (vertex === null) return;
+        dragTool.begin(surfaceView, vertex, ev);
+        canvas.setPointerCapture(ev.pointerId);
+        press = null; // a drag, not a click on the patch
+      },
+      true,
+    );
+    canvas.addEventListener('pointermove', (ev) => dragTool.move(ev));
+    const end = (ev: PointerEvent) => void dragTool.end(ev);
+    canvas.addEventListener('pointerup', end);
+    canvas.addEventListener('pointercancel', end);
+  }
 
   // The box: taken in the capture phase of the view's container, before the orbit controls.
   let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;

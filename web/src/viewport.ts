@@ -270,6 +270,31 @@ export class Viewport {
     return performance.now() - t0;
   }
 
+  /** The point of the line through `vertex` along axis `axis` (0 x, 1 y, 2 z) nearest the
+   * ray through a client point: a drag locked to that axis. */
+  axisTarget(vertex: Vec3, axis: 0 | 1 | 2, x: number, y: number): Vec3 {
+    const start = new THREE.Vector3(...vertex);
+    const along = new THREE.Vector3().setComponent(axis, 1);
+    const reach = 1e6 * (1 + start.length());
+    const onAxis = new THREE.Vector3();
+    this.ray(x, y).distanceSqToSegment(
+      start.clone().addScaledVector(along, -reach),
+      start.clone().addScaledVector(along, reach),
+      undefined,
+      onAxis,
+    );
+    return onAxis.toArray() as Vec3;
+  }
+
+  /** Where a drag of `vertex` to a client point lands: on the plane through the vertex
+   * that faces the camera. */
+  dragTarget(vertex: Vec3, x: number, y: number): Vec3 | null {
+    const normal = this.camera.getWorldDirection(new THREE.Vector3());
+    const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, new THREE.Vector3(...vertex));
+    const hit = this.ray(x, y).intersectPlane(plane, new THREE.Vector3());
+    return hit ? (hit.toArray() as Vec3) : null;
+  }
+
   /** A world point in client (page) pixels, and whether it lies in front of the camera. */
   toClient(p: THREE.Vector3): { x: number; y: number; z: number; visible: boolean } {
     const rect = this.canvasRect();
