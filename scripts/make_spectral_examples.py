@@ -12,7 +12,7 @@ Standard library only and deterministic: the same files come out every run.
   membrane.json        the membrane with derivative curves, order 8 (seed 003 Figs. 5-6,
                        eqs. 32-35)
   vase-sections.json   a fluted vase from 12 planar cross sections given as points
-                       (cross-sections model, seed 002 method 2: exact C2 joins)
+                       (cross-sections model, the global chain: C4 at the sections)
   elephant-leg.json    a leg and the trunk of CGAL's elephant.off (Debian libcgal-demo),
   elephant-trunk.json  rebuilt by `pdesurf rebuild --as cross-sections` (25 sections)
 
@@ -353,9 +353,11 @@ def vase_sections():
         curves.append({"points": pts})
     return {"type": "cross-sections", "name": "vase-sections",
             "description": "A fluted vase from 12 planar cross sections given as points (6 "
-                           "flutes, turning up the vase), a chain of sixth-order patches "
-                           "(a = -1) with exact C2 joins (seed 002 method 2).",
-            "a": -1, "modes": 6, "method": "c2", "parameterization": "chord-length",
+                           "flutes, turning up the vase), a global chain of sixth-order "
+                           "patches (a = -1), C4 at the sections: a moved point stays a local "
+                           "edit, where the seed's method 2 (c2) passes it on from patch to "
+                           "patch.",
+            "a": -1, "modes": 6, "method": "global", "parameterization": "chord-length",
             "remainder": True, "curves": curves}
 
 

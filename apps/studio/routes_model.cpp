@@ -20,7 +20,10 @@ void addModelRoutes(const Studio& studio) {
                       Json out = doc.openedStatus();
                       out["editable"] = doc.session().editable();
                       out["model"] = Json::parse(doc.modelText());
-                      if (!doc.session().editable()) out["view"] = doc.viewCurves();
+                      if (!doc.session().editable()) {
+                        out["view"] = doc.viewCurves();
+                        out["dragAdvice"] = dragAdvice(doc.session().model());
+                      }
                       sendJson(res, out);
                     }));
 

@@ -101,7 +101,7 @@ test('select a frame and move the a1 slider: the shape changes', async ({ page, 
   // a1.z: the forces of sculpt.json push along z, so z is what a1.z reshapes.
   await page.getByTestId('a1-z').fill('0.3');
   await expect.poll(async () => (await studio.state()).model.frames[0].a1?.[2]).toBeCloseTo(0.3, 6);
-  await expect(page.getByTestId('a1-z-value')).toHaveText('0.3');
+  await expect(page.getByTestId('a1-z-value')).toHaveValue('0.3');
   await meshUpToDate(page);
   await page.waitForTimeout(300);
   const imageAfter = await surface(page).screenshot();
@@ -111,6 +111,12 @@ test('select a frame and move the a1 slider: the shape changes', async ({ page, 
   await page.getByTestId('a1-y-mag').fill('3');
   await page.getByTestId('a1-y-mag').press('Enter');
   await expect.poll(async () => (await studio.state()).model.frames[0].a1?.[1]).toBeCloseTo(3, 6);
+  // The value box: a typed expression sets the value exactly (no slider rounding), and the
+  // slider's range follows it.
+  await page.getByTestId('a1-y-value').fill('1/3');
+  await page.getByTestId('a1-y-value').press('Enter');
+  await expect.poll(async () => (await studio.state()).model.frames[0].a1?.[1]).toBe(1 / 3);
+  await expect(page.getByTestId('a1-y-mag')).toHaveValue('1');
 
   // A force region and f0.
   await page.getByTestId('force-0-u1').fill('0.6');

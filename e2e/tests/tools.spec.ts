@@ -56,8 +56,11 @@ test.describe('nothing lost', () => {
     await expect(page.getByTestId('model-path')).toHaveText('sculpt.json');
     expect((await studio.state()).model.vertices[2]).toEqual(edited);
     expect((await studio.state()).dirty).toBe(true);
+    // The file list names the model still open, not the one cancelled.
+    await expect(page.getByTestId('file-select')).toHaveValue('sculpt.json');
 
     // Save: the edits are written, then the other model opens.
+    await page.getByTestId('file-select').selectOption('copy.json');
     await page.getByTestId('open').click();
     await page.getByTestId('unsaved-save').click();
     await expect(page.getByTestId('model-path')).toHaveText('copy.json');
@@ -102,11 +105,11 @@ test.describe('nothing lost', () => {
     // A magnification box: empty is refused, the slider's value stays.
     await page.mouse.click(...(await frameClick(page, 0)));
     const mag = page.getByTestId('a1-x-mag');
-    const value = await page.getByTestId('a1-x-value').textContent();
+    const value = await page.getByTestId('a1-x-value').inputValue();
     await mag.fill('');
     await mag.press('Enter');
     await expect(mag).toHaveClass(/invalid/);
-    await expect(page.getByTestId('a1-x-value')).toHaveText(value!);
+    await expect(page.getByTestId('a1-x-value')).toHaveValue(value);
     expect((await studio.state()).undo).toBe(before.undo + 1);
   });
 });

@@ -156,7 +156,43 @@ struct MoveCurvePoints {
   CurveRef curve;
   std::vector<std::uint32_t> points;
   std::vector<Vec3> positions;  ///< one per point
+  /// A closed curve's points only (a section, a spectral condition given as points): > 0
+  /// deforms the curve smoothly round each moved point instead of moving it alone. A point at
+  /// arc length s from a moved point (along the closed polygon) moves by w(s / r) times that
+  /// point's offset, w(t) = (1 − t²)³ for t < 1 and 0 beyond (a compact bump with w'' = 0 at
+  /// its edge), r = falloff × the polygon's length; the offsets of several moved points add.
+  /// Within a group (a drag) the offsets and arc lengths are taken from the group's start, so
+  /// a drag ends exactly where its last step puts it, whatever the steps before it.
+  double falloff = 0.0;
 };
+/// The largest falloff (half the closed curve's length: the bump then reaches all round).
+constexpr double kMaxFalloff = 0.5;
+/// The falloff of the studio's point drags on closed curves: a bump an eighth of the way
+/// round each side, wide enough that a section's Fourier fit takes it smoothly (a section of
+/// 6 modes resolves a twelfth of its length) and narrow enough to stay a local edit.
+constexpr double kStudioFalloff = 0.125;
+
+/// What a designer should know before dragging a point of this model, or "" when a point drag
+/// stays local and bounded (tests/session/locality_test.cpp): the seed's marching chains
+/// ("c2", "shared-curves") pass a moved point on from patch to patch, amplified; a spectral
+/// patch of high order through many curves is ill-conditioned between them. Says what to use
+/// instead (the global chain, whole-curve moves).
+std::string dragAdvice(const AnyModel& model);
+
+/// A shape edit may move the surface out of its box by at most this many times the largest
+/// offset of a point it moved (a locally bounded edit reaches 1 to 2: locality_test.cpp), plus
+/// kReachRounding of the box's diagonal; beyond, the session refuses it (checkReach).
+constexpr double kMaxReach = 10.0;
+/// Rounding slack of checkReach, relative to the box's diagonal: the meshes it compares hold
+/// float positions (7 digits).
+constexpr double kReachRounding = 1e-6;
+/// Samples per patch side of the meshes checkReach compares.
+constexpr std::uint32_t kReachSamples = 17;
+/// Throws ModelError (source "edit", with dragAdvice's advice) when `after`'s surface reaches
+/// out of `before`'s box by more than kMaxReach times the largest offset of the points of its
+/// curves and nets: a point drag on an ill-conditioned patch that would throw it far away.
+void checkReach(const AnyModel& before, const SolvedModel& solvedBefore, const AnyModel& after,
+                const SolvedModel& solvedAfter);
 /// Moves, turns or scales one whole curve (points or Fourier coefficients: a0 takes the
 /// whole map, the modes and a derivative condition's curve the linear part alone).
 struct TransformCurve {
@@ -182,6 +218,7 @@ struct SetOperator {
   std::optional<double> a;             ///< spectral and cross-sections
   std::optional<std::uint32_t> modes;  ///< spectral and cross-sections
   std::optional<bool> remainder;       ///< spectral and cross-sections
+  std::optional<ChainMethod> method;   ///< cross-sections only
 };
 /// Replaces a spectral model's spine edits (its file's "spine" field): the studio's spine
 /// drag sends the list with the dragged point's edit (seed 003 §4.2).

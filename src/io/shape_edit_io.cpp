@@ -77,7 +77,7 @@ ShapeEdit parseSetOperator(const ModelReader& rd, const Json& doc, const AnyMode
   if (spectral)
     onlyMembers(rd, doc, {"operator", "N", "a", "modes", "remainder"});
   else
-    onlyMembers(rd, doc, {"a", "modes", "remainder"});
+    onlyMembers(rd, doc, {"a", "modes", "remainder", "method"});
   SetOperator e;
   if (auto it = doc.find("operator"); it != doc.end())
     e.kind = rd.choice<OperatorKind>(*it, "$.operator",
@@ -89,10 +89,16 @@ ShapeEdit parseSetOperator(const ModelReader& rd, const Json& doc, const AnyMode
     e.modes = rd.integer(*it, "$.modes", 0, std::numeric_limits<std::uint32_t>::max());
   if (auto it = doc.find("remainder"); it != doc.end())
     e.remainder = rd.boolean(*it, "$.remainder");
-  if (!e.kind && !e.power && !e.a && !e.modes && !e.remainder)
+  if (auto it = doc.find("method"); it != doc.end())
+    e.method = rd.choice<ChainMethod>(*it, "$.method",
+                                      {{"global", ChainMethod::Global},
+                                       {"c2", ChainMethod::ExactC2},
+                                       {"shared-curves", ChainMethod::SharedCurves}});
+  if (!e.kind && !e.power && !e.a && !e.modes && !e.remainder && !e.method)
     rd.fail("$", spectral ? "set-operator needs \"operator\", \"N\", \"a\", \"modes\" or "
                             "\"remainder\""
-                          : "set-operator needs \"a\", \"modes\" or \"remainder\"");
+                          : "set-operator needs \"a\", \"modes\", \"remainder\" or "
+                            "\"method\"");
   return e;
 }
 
@@ -113,7 +119,7 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
   };
   AnyModel copy = model;  // the edit's targets are checked on a copy of the model
   if (name == "move-curve-points") {
-    onlyMembers(rd, doc, {"curve", "points", "positions"});
+    onlyMembers(rd, doc, {"curve", "points", "positions", "falloff"});
     MoveCurvePoints e;
     e.curve = curveRef(rd, doc);
     const CurveTarget target = curveTarget(copy, e.curve, "$.curve");
@@ -136,6 +142,17 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
       e.points.push_back(k);
     }
     e.positions = positions(rd, doc, e.points.size());
+    if (auto it = doc.find("falloff"); it != doc.end()) {
+      e.falloff = rd.number(*it, "$.falloff");
+      if (!(e.falloff >= 0.0 && e.falloff <= kMaxFalloff))
+        rd.fail("$.falloff", fmt::format("{} is not between 0 and {} (a fraction of the "
+                                         "curve's length)",
+                                         e.falloff, kMaxFalloff));
+      if (e.falloff > 0.0 && !target.input)
+        rd.fail("$.falloff", fmt::format("{} is not a closed curve: a falloff bends closed "
+                                         "curves given as points",
+                                         target.path));
+    }
     out.edit = std::move(e);
   } else if (name == "transform-curve") {
     onlyMembers(rd, doc, {"curve", "translate", "rotate", "scale", "center", "from"});

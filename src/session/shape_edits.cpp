@@ -6,7 +6,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "io/model_reader.hpp"
+#include "pdesurf/analysis.hpp"
 #include "pdesurf/session.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "session/curve_target.hpp"
@@ -14,6 +17,13 @@
 namespace pdesurf {
 
 namespace {
+
+/// dragAdvice's probe of a spectral patch: point 0 of each position condition given as points
+/// moved by this fraction of the surface's size, the patch solved again.
+constexpr double kProbeFraction = 1e-3;
+/// dragAdvice advises on a spectral patch whose probe moved the surface by more than this many
+/// times the probe's offset (twice the aim of locality_test.cpp for a point).
+constexpr double kAdviseRatio = 4.0;
 
 using detail::curveTarget;
 using detail::CurveTarget;
@@ -73,6 +83,63 @@ SampledCurve sectionAt(const CrossSectionChain& chain, double s, std::uint32_t c
   return out;
 }
 
+/// Moves `points[moved[k]]` to `positions[k]` and, with falloff > 0, the points round each
+/// by the compact bump of MoveCurvePoints::falloff (the polygon closed).
+void movePoints(std::vector<Vec3>& points, const std::vector<std::uint32_t>& moved,
+                const std::vector<Vec3>& positions, double falloff) {
+  const std::size_t n = points.size();
+  std::vector<Vec3> offset(n, Vec3::Zero());
+  if (falloff > 0.0 && n > 1) {
+    std::vector<double> at(n, 0.0);  // arc length from point 0
+    for (std::size_t j = 1; j < n; ++j) at[j] = at[j - 1] + (points[j] - points[j - 1]).norm();
+    const double length = at[n - 1] + (points[0] - points[n - 1]).norm();
+    const double radius = falloff * length;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      const Vec3 d = positions[k] - points[moved[k]];
+      for (std::size_t j = 0; j < n; ++j) {
+        const double along = std::abs(at[j] - at[moved[k]]);
+        const double t = std::min(along, length - along) / radius;
+        if (t < 1.0) offset[j] += std::pow(1.0 - t * t, 3) * d;
+      }
+    }
+  }
+  for (std::size_t j = 0; j < n; ++j) points[j] += offset[j];
+  for (std::size_t k = 0; k < moved.size(); ++k) points[moved[k]] = positions[k];
+}
+
+/// A solved model's surface box, from a mesh of kReachSamples a patch side.
+Bounds surfaceBox(const SolvedModel& solved) {
+  Bounds box;
+  const Mesh mesh = tessellate(solved, TessellateOptions{.resolution = kReachSamples});
+  for (std::size_t k = 0; k + 2 < mesh.positions.size(); k += 3)
+    box.add(Vec3(mesh.positions[k], mesh.positions[k + 1], mesh.positions[k + 2]));
+  return box;
+}
+
+/// The points of every curve and net of a model that holds positions, in a fixed order (two
+/// models of one structure list corresponding points).
+std::vector<Vec3> handlePoints(const AnyModel& model) {
+  std::vector<Vec3> out;
+  const auto add = [&](const std::vector<Vec3>& points) {
+    out.insert(out.end(), points.begin(), points.end());
+  };
+  const auto addCurve = [&](const CurveInput& c) {
+    if (const auto* s = std::get_if<SampledCurve>(&c)) add(s->points);
+    if (const auto* f = std::get_if<FourierCurve>(&c)) out.push_back(f->a0);
+  };
+  if (const auto* m = std::get_if<SpectralModel>(&model)) {
+    for (const SpectralCondition& c : m->conditions)
+      if (c.derivative == 0) addCurve(c.curve);
+  } else if (const auto* m = std::get_if<CrossSectionModel>(&model)) {
+    for (const CurveInput& c : m->curves) addCurve(c);
+  } else if (const auto* m = std::get_if<BSplinePdeModel>(&model)) {
+    for (const Vec3& p : m->net.points)
+      if (p.allFinite()) out.push_back(p);  // the inner points are NaN: solved
+    for (std::vector<Vec3>* c : cornerCurves(const_cast<BSplinePdeModel&>(*m))) add(*c);
+  }
+  return out;
+}
+
 /// The number of points a curve holds (Fourier curves: 0).
 std::size_t pointCount(const CurveInput& c) {
   const auto* s = std::get_if<SampledCurve>(&c);
@@ -80,6 +147,29 @@ std::size_t pointCount(const CurveInput& c) {
 }
 
 }  // namespace
+
+void checkReach(const AnyModel& before, const SolvedModel& solvedBefore, const AnyModel& after,
+                const SolvedModel& solvedAfter) {
+  // How far the handles moved: the largest offset of a corresponding point.
+  const std::vector<Vec3> was = handlePoints(before), now = handlePoints(after);
+  if (was.size() != now.size()) return;  // a section added or removed: no drag
+  double moved = 0.0;
+  for (std::size_t k = 0; k < was.size(); ++k) moved = std::max(moved, (now[k] - was[k]).norm());
+  // Operators, spines, tangents and modes move no position: their effect is the edit's intent.
+  if (moved == 0.0) return;
+  const Bounds from = surfaceBox(solvedBefore), to = surfaceBox(solvedAfter);
+  // How far the surface reached out of its box.
+  const double reach = std::max((to.max - from.max).cwiseMax(0.0).maxCoeff(),
+                                (from.min - to.min).cwiseMax(0.0).maxCoeff());
+  if (reach <= kMaxReach * moved + kReachRounding * from.diagonal()) return;
+  const std::string advice = dragAdvice(before);
+  throw ModelError(
+      "edit", "",
+      fmt::format("this edit would move the surface {:.3g} out of its box ({:.3g} across), {:.3g} "
+                  "times as far as the points moved ({:.3g}); kept as it was. {}",
+                  reach, from.diagonal(), moved > 0.0 ? reach / moved : reach, moved,
+                  advice.empty() ? "Move whole curves instead" : advice));
+}
 
 bool takesShapeEdits(const AnyModel& model) {
   return !std::holds_alternative<VertexFrameModel>(model);
@@ -95,7 +185,7 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
           const CurveTarget target = curveTarget(next, e.curve, "$.curve");
           std::vector<Vec3>& points =
               target.input ? std::get<SampledCurve>(*target.input).points : *target.points;
-          for (std::size_t k = 0; k < e.points.size(); ++k) points.at(e.points[k]) = e.positions[k];
+          movePoints(points, e.points, e.positions, e.falloff);
         } else if constexpr (std::is_same_v<T, TransformCurve>) {
           const CurveTarget target = curveTarget(next, e.curve, "$.curve");
           if (target.input) {
@@ -132,6 +222,7 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
             if (e.a) options.a = *e.a;
             if (e.modes) options.modes = *e.modes;
             if (e.remainder) options.remainder = *e.remainder;
+            if (e.method) options.method = *e.method;
           }
         } else if constexpr (std::is_same_v<T, SetSpine>) {
           std::get<SpectralModel>(next).spineEdits = e.edits;
@@ -184,11 +275,60 @@ void ModelSession::apply(const ShapeEdit& edit, std::string_view group) {
   if (!takesShapeEdits(model()))
     throw std::logic_error("ModelSession::apply: vertex-frame models take Edit, not ShapeEdit");
   const State* base = &current_;
-  if (const auto* t = std::get_if<TransformCurve>(&edit); t && t->fromGroupStart)
+  const auto* t = std::get_if<TransformCurve>(&edit);
+  const auto* m = std::get_if<MoveCurvePoints>(&edit);
+  if ((t && t->fromGroupStart) || (m && m->falloff > 0.0))
     if (const State* start = history_.groupStart(group)) base = start;
   auto next = std::make_shared<const AnyModel>(applyShapeEdit(*base->model, *base->solved, edit));
   auto solvedNext = solveIfFixed(next);  // may throw: nothing changed yet
+  checkReach(*base->model, *base->solved, *next, *solvedNext);
   change(std::move(next), std::move(solvedNext), group);
+}
+
+std::string dragAdvice(const AnyModel& model) {
+  if (const auto* m = std::get_if<CrossSectionModel>(&model);
+      m && m->options.method != ChainMethod::Global)
+    return fmt::format(
+        "this chain is built by the seed's marching method \"{}\": a moved point is passed "
+        "on from patch to patch and can move the surface far from it. The global chain keeps a "
+        "drag local",
+        m->options.method == ChainMethod::ExactC2 ? "c2" : "shared-curves");
+  const auto* m = std::get_if<SpectralModel>(&model);
+  if (!m) return "";
+  // A spectral patch: point 0 of each position condition given as points moved a little,
+  // the surface's largest move measured (the probe's meshes correspond vertex by vertex).
+  const auto positions = [](const SolvedModel& solved) {
+    return tessellate(solved, TessellateOptions{.resolution = kReachSamples}).positions;
+  };
+  try {
+    const SolvedModel base = solveModel(model, "probe");
+    const auto was = positions(base);
+    Bounds box;
+    for (std::size_t k = 0; k + 2 < was.size(); k += 3)
+      box.add(Vec3(was[k], was[k + 1], was[k + 2]));
+    const double d = kProbeFraction * box.diagonal();
+    double worst = 0.0;
+    for (std::size_t i = 0; i < m->conditions.size(); ++i) {
+      const auto* points = std::get_if<SampledCurve>(&m->conditions[i].curve);
+      if (m->conditions[i].derivative != 0 || !points) continue;
+      SpectralModel probe = *m;
+      std::get<SampledCurve>(probe.conditions[i].curve).points[0] += d * Vec3(1, 2, 3).normalized();
+      const auto now = positions(solveModel(AnyModel(std::move(probe)), "probe"));
+      double moved = 0.0;
+      for (std::size_t k = 0; k + 2 < was.size(); k += 3)
+        moved = std::max(
+            moved, Vec3(now[k] - was[k], now[k + 1] - was[k + 1], now[k + 2] - was[k + 2]).norm());
+      worst = std::max(worst, moved / d);
+    }
+    if (worst <= kAdviseRatio) return "";
+    return fmt::format(
+        "this patch of order {} through {} curves is ill-conditioned between them: one point "
+        "moved by d moves the surface by up to {:.2g} d. Move whole curves (their centre marks) "
+        "or the spine",
+        m->op.order(), m->conditions.size(), worst);
+  } catch (const ModelError&) {
+    return "";  // a model that does not solve has no drag to advise on
+  }
 }
 
 SpineHandles spineHandles(const SolvedModel& solved, std::uint32_t count) {

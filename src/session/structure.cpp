@@ -130,9 +130,22 @@ void checkResult(const VertexFrameModel& next) {
                              j + 1));
       }
   }
-  // Everything a file is checked for (indices, forces solvable, edges sharing their middle).
-  (void)parseVertexFrameModel(serializeVertexFrameModel(next), "edit");
   const FrameTopology topology = buildTopology(next);
+  // Said in a designer's words (the file check below would name the file's fields).
+  if (topology.error.kind == TopologyError::Kind::MiddleVertexDiffers) {
+    const FrameSide a = topology.error.first, b = topology.error.second;
+    const auto sa = sideSlots(a.side), sb = sideSlots(b.side);
+    const auto& va = next.frames[a.frame].vertices;
+    const auto& vb = next.frames[b.frame].vertices;
+    refuse("", fmt::format("frames {} and {} would meet at the two ends of a side (vertices {} "
+                           "and {}) but not at its middle (vertex {} of frame {}, vertex {} of "
+                           "frame {}): weld the middles too, or weld the two whole edges "
+                           "(select the corners of both)",
+                           a.frame, b.frame, vb[sb[0]], vb[sb[2]], va[sa[1]], a.frame, vb[sb[1]],
+                           b.frame));
+  }
+  // Everything a file is checked for (indices, forces solvable).
+  (void)parseVertexFrameModel(serializeVertexFrameModel(next), "edit");
   for (const ModelEdge& e : topology.edges)
     if (e.sideCount > 2 && !e.collapsed()) {
       const FrameSide first = topology.edgeSides[e.firstSide];
@@ -441,6 +454,8 @@ VertexFrameModel split(const VertexFrameModel& model, const FrameTopology& topol
           out = f.vertices[s];
           continue;
         }
+        // A part's centre (odd i and j): no frame uses it (latticeFrame leaves it out).
+        if (i % 2 == 1 && j % 2 == 1) continue;
         const bool onSide = i == 0 || i == cols - 1 || j == 0 || j == rows - 1;
         if (!onSide) {
           out = add(patch.position(u, v));

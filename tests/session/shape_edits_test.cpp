@@ -59,8 +59,26 @@ std::string refusal(ModelSession& s, const std::string& json, std::string* path 
 
 const SpectralPatch& patchOf(ModelSession& s) { return *s.solved().spectral()->patch; }
 
+/// A spectral tube of order 4 (Ugail N = 2) through 4 circles given as 12 points each: well
+/// conditioned, so a moved point stays a bounded edit (the shell's order 12 through 12 curves
+/// is not: locality_test.cpp).
+std::string pointTube() {
+  Json doc = {{"type", "spectral"}, {"operator", "ugail"}, {"N", 2}, {"modes", 4}};
+  doc["conditions"] = Json::array();
+  for (int i = 0; i < 4; ++i) {
+    Json points = Json::array();
+    const double r = 1.0 - 0.15 * i;
+    for (int j = 0; j < 12; ++j) {
+      const double t = 2.0 * std::numbers::pi * j / 12;
+      points.push_back({r * std::cos(t), r * std::sin(t), i / 3.0});
+    }
+    doc["conditions"].push_back({{"u", i / 3.0}, {"curve", {{"points", points}}}});
+  }
+  return doc.dump();
+}
+
 TEST(ShapeEdits, MovedCurvePointsAreInterpolatedAndUndoRestoresTheBytes) {
-  ModelSession s = open(testing::example("shell.json"));
+  ModelSession s(parseModel(pointTube(), "tube"), "tube");
   const std::string original = serializeModel(s.model());
   const auto& condition = std::get<SpectralModel>(s.model()).conditions[3];
   const Vec3 was = std::get<SampledCurve>(condition.curve).points[5];
@@ -472,6 +490,56 @@ TEST(ShapeEdits, ABlendsCornerMovesInEveryCurveThatSharesIt) {
     for (double u : {0.0, 1.0})
       for (double v : {0.0, 1.0}) nearest = std::min(nearest, (piece.position(u, v) - to).norm());
   EXPECT_LT(nearest, kThrough);
+}
+
+}  // namespace
+}  // namespace pdesurf
+
+namespace pdesurf {
+namespace {
+
+TEST(ShapeEdits, AFalloffBendsAClosedCurveRoundTheMovedPointFromTheDragsStart) {
+  ModelSession s = open(testing::example("vase-sections.json"));
+  const auto section = [&] {
+    return std::get<SampledCurve>(std::get<CrossSectionModel>(s.model()).curves[6]).points;
+  };
+  const std::vector<Vec3> was = section();
+  const std::size_t n = was.size();
+  const auto step = [&](const Vec3& offset) {
+    const Vec3 to = was[0] + offset;
+    edit(s, fmt::format(R"({{"op":"move-curve-points","curve":6,"points":[0],)"
+                        R"("positions":[[{},{},{}]],"falloff":0.125,"group":"drag"}})",
+                        to.x(), to.y(), to.z()));
+  };
+  // Two steps of one drag: the second replaces the first (the bump from the drag's start).
+  step(Vec3(0.05, 0, 0.02));
+  step(Vec3(0.02, 0.01, 0));
+  const std::vector<Vec3> now = section();
+  EXPECT_EQ(now[0], was[0] + Vec3(0.02, 0.01, 0));
+  double length = 0.0;
+  for (std::size_t j = 0; j < n; ++j) length += (was[(j + 1) % n] - was[j]).norm();
+  double along = 0.0;  // arc length from point 0, forwards
+  for (std::size_t j = 1; j < n; ++j) {
+    along += (was[j] - was[j - 1]).norm();
+    const double t = std::min(along, length - along) / (0.125 * length);
+    const double w = t < 1.0 ? std::pow(1.0 - t * t, 3) : 0.0;
+    EXPECT_LT((now[j] - (was[j] + w * Vec3(0.02, 0.01, 0))).norm(), kThrough) << "point " << j;
+  }
+  EXPECT_EQ(s.undoDepth(), 1u);
+  // A falloff bends closed curves only; the method of a chain is set like its operator.
+  ModelSession dome = open(testing::example("bspline-dome.json"));
+  std::string path;
+  const std::string openCurve = R"({"op":"move-curve-points","curve":"vMin","points":[3],)"
+                                R"("positions":[[0,0,0]],"falloff":0.1})";
+  EXPECT_NE(refusal(dome, openCurve, &path).find("not a closed curve"), std::string::npos);
+  EXPECT_EQ(path, "$.falloff");
+  const std::string wide = R"({"op":"move-curve-points","curve":6,"points":[0],)"
+                           R"("positions":[[0,0,0]],"falloff":0.6})";
+  EXPECT_NE(refusal(s, wide, &path), "");
+  EXPECT_EQ(path, "$.falloff");
+  EXPECT_EQ(dragAdvice(s.model()), "");
+  edit(s, R"({"op":"set-operator","method":"c2"})");
+  EXPECT_NE(dragAdvice(s.model()).find("\"c2\""), std::string::npos);
 }
 
 }  // namespace

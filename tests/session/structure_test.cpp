@@ -234,6 +234,30 @@ TEST(Structure, SplitCutsThroughTheNeighboursWithVerticesOnTheSurface) {
   EXPECT_LT((was - now).norm(), 0.05) << "the split changed the shape by " << (was - now).norm();
 }
 
+/// The vertices no frame uses.
+std::size_t unusedVertices(const VertexFrameModel& m) {
+  std::vector<bool> used(m.vertices.size(), false);
+  for (const Frame& f : m.frames)
+    for (std::uint32_t v : f.vertices) used[v] = true;
+  return static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+}
+
+TEST(Structure, SplitAddsNoVertexThatNoFrameUses) {
+  // A part's centre is no frame's vertex: a split must not add it (it would show as a
+  // handle, be saved, and take a click meant for the part).
+  for (const auto& [parts, vertices] : {std::pair{"\"parts\":4", 21u},
+                                        {"\"parts\":2,\"across\":\"u\"", 13u},
+                                        {"\"parts\":2,\"across\":\"v\"", 13u}}) {
+    ModelSession s{AnyModel(newModel(NewModelOptions::Kind::Single, 1, 1))};
+    applyJson(s, fmt::format(R"({{"op":"split-frame","frame":0,{}}})", parts));
+    EXPECT_EQ(unusedVertices(*s.frames()), 0u) << parts;
+    EXPECT_EQ(s.frames()->vertices.size(), vertices) << parts;
+  }
+  ModelSession grid{AnyModel(curvedGrid())};
+  applyJson(grid, R"({"op":"split-frame","frame":4,"parts":4})");
+  EXPECT_EQ(unusedVertices(*grid.frames()), 0u);
+}
+
 TEST(Structure, SplitInTwoOnATubeRunsAlongItAndKeepsForcesInsideAPart) {
   VertexFrameModel tube = newModel(NewModelOptions::Kind::Tube, 4, 3);
   tube.frames[0].forces = {{Vec3(0, 0, 1), {0.1, 0.4, 0.2, 0.9}}};
@@ -290,6 +314,21 @@ TEST(Structure, WeldVerticesJoinsTwoFramesAndRefusesFoldingOne) {
   EXPECT_EQ(t.frames()->vertices.size(), two.vertices.size() - 1);
   EXPECT_EQ(t.frames()->vertices[keep], Vec3(1.25, 0, 0));  // half way
   EXPECT_EQ(t.frames()->frames[1].vertices[0], keep);
+  // Their other corners welded too: the side's ends are shared, its middles are not. The
+  // refusal names frames and vertices as the page shows them, not the file's fields.
+  const std::uint32_t keep2 = two.frames[0].vertices[4], gone2 = copy.vertices[6] - 1;
+  std::string why;
+  try {
+    t.apply(parseEdit(fmt::format(R"({{"op":"weld-vertices","vertices":[{},{}]}})", keep2, gone2),
+                      *t.frames())
+                .edit);
+  } catch (const ModelError& e) {
+    why = e.what();
+  }
+  EXPECT_TRUE(contains(why, "would meet at the two ends of a side")) << why;
+  EXPECT_TRUE(contains(why, "weld the two whole edges")) << why;
+  EXPECT_FALSE(contains(why, "$.")) << why;
+  EXPECT_FALSE(contains(why, "P3-P4-P5")) << why;
 }
 
 TEST(Structure, FlipMirrorsTheFrameAndItsForcesAndTwiceGivesThemBack) {

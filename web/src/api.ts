@@ -57,6 +57,8 @@ export interface ModelState extends Status {
   /** The model as its file says (a vertex-frames Model when editable). */
   model: Model;
   view?: ModelView;
+  /** Shape models: what to know before dragging a point ("" when a drag stays local). */
+  dragAdvice?: string;
 }
 export interface FileStatus extends Status {
   path: string;

@@ -7,7 +7,7 @@
 // Every change is a server edit (shape.ts makes them), so it is checked, undoable,
 // journalled and saved.
 import * as THREE from 'three';
-import type { Edit, Vec3 } from './api';
+import type { Edit, ModelState, Vec3 } from './api';
 import { $, readNumber } from './dom';
 import type { NumberRule } from './input';
 import { gizmoSubjects } from './gizmo';
@@ -384,6 +384,10 @@ export function mountCurveEditor(studio: Studio): void {
   });
   slider.addEventListener('change', () => void studio.endGesture().then(() => studio.reloadModel()));
 
+  $('use-global-chain').addEventListener('click', () =>
+    once('the global chain', () => ({ op: 'set-operator', method: 'global' })),
+  );
+
   function fillPanel(): void {
     const model = shape();
     $('shape-tools').hidden = !model;
@@ -401,6 +405,11 @@ export function mountCurveEditor(studio: Studio): void {
     if ([...select.options].some((o) => o.value === was)) select.value = was;
     $('curve-tools').hidden = select.options.length === 0; // a net has points, no curves
     $('section-tools').hidden = model.type !== 'cross-sections';
+    // Told before the drag, not after: the seed's marching chains and ill-conditioned patches.
+    const advice = (store.state.status as ModelState | null)?.dragAdvice ?? '';
+    $('drag-advice').hidden = !advice;
+    $('drag-advice-text').textContent = advice;
+    $('use-global-chain').hidden = !(model.type === 'cross-sections' && advice);
     const spectral = model.type === 'spectral';
     $('operator-tools').hidden = !spectral && model.type !== 'cross-sections';
     if (model.type === 'bspline-pde') return;

@@ -20,7 +20,7 @@ export function readNumber(
   rule: NumberRule,
   report: (message: string) => void,
 ): number | null {
-  // A number box holding text it cannot parse ("-", "1e") reports value "" and badInput.
+  // A browser's own number box holding text it cannot parse reports value "" and badInput.
   const text = input.validity?.badInput ? '?' : input.value;
   const parsed = parseNumber(text, { label: input.title || input.dataset.testid, ...rule });
   const error = 'error' in parsed ? parsed.error : '';
@@ -33,4 +33,12 @@ export function readNumber(
     return null;
   }
   return (parsed as { value: number }).value;
+}
+
+/** Makes `input` a number box that takes expressions (`1/3`, `2*pi`: input.ts): a text box
+ * with the decimal keyboard (a browser's number box would refuse the expression's text). */
+export function numberBox(input: HTMLInputElement): void {
+  input.type = 'text';
+  input.inputMode = 'decimal';
+  input.dataset.number = '';
 }

@@ -5,9 +5,12 @@
 // ctrl adds or removes), click empty space to clear the selection. Installed before the orbit
 // controls, so a press the tool takes never orbits.
 import type { Vec3 } from './api';
+import { $ } from './dom';
+import { evaluateExpression } from './input';
 import type { Topic } from './store';
 import type { Studio } from './studio';
-import { toggled } from './structure';
+import type { Viewport } from './viewport';
+import { coincidentWith, toggled, toggledInStack } from './structure';
 
 /** Puts each vertex of `moved` at its start `from[i]` offset by `d` in the store (one update,
  * announcing `topics`), and moves the frame view's handles of those but `skip` (a handle the
@@ -27,16 +30,46 @@ export function offsetVertices(
   for (const v of moved) if (v !== skip) frameView.moveVertex(v, store.state.model!.vertices[v]);
 }
 
+/** An offset with each coordinate rounded to a multiple of `step` (0: as it is). */
+export function snapped(d: readonly [number, number, number], step: number): [number, number, number] {
+  if (!(step > 0)) return [d[0], d[1], d[2]];
+  return [0, 1, 2].map((c) => Math.round(d[c] / step) * step) as [number, number, number];
+}
+
 /** Presses that move less than this many pixels are clicks. */
 const CLICK_PIXELS = 5;
 /** Above this many vertices the hover cursor is not computed (picking costs per move). */
 const HOVER_MAX_VERTICES = 20000;
 
-export function mountDragTool(studio: Studio): void {
+/** The handle drag, for the views that start one (the frame view here, the surface view in
+ * modeller.ts): the grabbed vertex moves in the plane through it facing that view's camera. */
+export interface DragTool {
+  /** Grabs `vertex` (and the selection it belongs to) for the pointer of `ev` in `view`. */
+  begin(view: Viewport, vertex: number, ev: PointerEvent): void;
+  /** Whether a drag of this pointer is in progress. */
+  dragging(pointer: number): boolean;
+  /** The pointer moved (a drag's step). */
+  move(ev: PointerEvent): void;
+  /** The pointer was released: the drag's gesture ends (one undo step). */
+  end(ev: PointerEvent): Promise<void>;
+}
+
+export function mountDragTool(studio: Studio): DragTool {
   const { store, frameView, pump } = studio;
   const canvas = frameView.renderer.domElement;
   /** A drag: the handle grabbed, and every vertex it moves with where it started. */
-  let drag: { vertex: number; pointer: number; moved: number[]; from: Vec3[] } | null = null;
+  let drag: {
+    vertex: number;
+    pointer: number;
+    moved: number[];
+    from: Vec3[];
+    /** The locked axis (X, Y, Z keys), or null: in the plane facing the camera. */
+    axis: 0 | 1 | 2 | null;
+    /** Where the pointer was last. */
+    at?: { x: number; y: number };
+    /** The view the drag is in (its camera's plane). */
+    view: Viewport;
+  } | null = null;
   let press: { x: number; y: number; shift: boolean; ctrl: boolean } | null = null;
   let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;
 
@@ -46,6 +79,32 @@ export function mountDragTool(studio: Studio): void {
       s.selectedVertex = vertices.length ? vertices[vertices.length - 1] : null;
     });
 
+  const tool: DragTool = {
+    begin(view, vertex, ev) {
+      const model = store.state.model;
+      if (!model) return;
+      view.controls.enabled = false; // the views' listeners run before their controls'
+      const current = store.state.selectedVertices;
+      const moved = current.includes(vertex) && current.length > 1 ? [...current] : [vertex];
+      if (moved.length === 1) selectVertices([vertex]);
+      drag = { vertex, pointer: ev.pointerId, moved, from: moved.map((v) => [...model.vertices[v]] as Vec3), axis: null, view };
+      studio.beginGesture('drag');
+      ev.preventDefault();
+    },
+    dragging: (pointer) => !!drag && drag.pointer === pointer,
+    move(ev) {
+      if (!drag || ev.pointerId !== drag.pointer || !store.state.model) return;
+      drag.at = { x: ev.clientX, y: ev.clientY };
+      dragTo(ev.clientX, ev.clientY);
+    },
+    async end(ev) {
+      if (!drag || ev.pointerId !== drag.pointer) return;
+      drag.view.controls.enabled = true;
+      drag = null;
+      await studio.endGesture();
+    },
+  };
+
   canvas.addEventListener('pointerdown', (ev) => {
     if (ev.button !== 0 || !store.state.model) return;
     const model = store.state.model;
@@ -53,19 +112,14 @@ export function mountDragTool(studio: Studio): void {
     const vertex = frameView.vertexAt(ev.clientX, ev.clientY);
     if (vertex !== null && modifier) {
       frameView.controls.enabled = false; // this listener runs before the controls'
-      selectVertices(toggled(store.state.selectedVertices, vertex, ev.shiftKey ? 'toggle' : 'remove'));
+      const stack = coincidentWith(model, vertex);
+      selectVertices(toggledInStack(store.state.selectedVertices, vertex, stack, ev.shiftKey ? 'toggle' : 'remove'));
       ev.preventDefault();
       return;
     }
     if (vertex !== null) {
-      frameView.controls.enabled = false;
-      const current = store.state.selectedVertices;
-      const moved = current.includes(vertex) && current.length > 1 ? [...current] : [vertex];
-      if (moved.length === 1) selectVertices([vertex]);
-      drag = { vertex, pointer: ev.pointerId, moved, from: moved.map((v) => [...model.vertices[v]] as Vec3) };
+      tool.begin(frameView, vertex, ev);
       canvas.setPointerCapture(ev.pointerId);
-      studio.beginGesture('drag');
-      ev.preventDefault();
     } else if (modifier) {
       frameView.controls.enabled = false;
       const div = document.createElement('div');
@@ -102,12 +156,19 @@ export function mountDragTool(studio: Studio): void {
             : '';
       if (canvas.style.cursor !== cursor) canvas.style.cursor = cursor;
     }
-    if (!drag || ev.pointerId !== drag.pointer || !model) return;
+    tool.move(ev);
+  });
+
+  /** Moves the dragged vertices for the pointer at (x, y): in the plane facing the camera, or
+   * along the locked axis (the point of the axis through the start nearest the pointer's
+   * ray), the offset rounded to the grid step when one is set. */
+  function dragTo(x: number, y: number): void {
+    if (!drag) return;
     const { vertex, moved, from } = drag;
     const start = from[moved.indexOf(vertex)];
-    const target = frameView.dragTarget(start, ev.clientX, ev.clientY);
+    const target = drag.axis === null ? drag.view.dragTarget(start, x, y) : drag.view.axisTarget(start, drag.axis, x, y);
     if (!target) return;
-    const d = [target[0] - start[0], target[1] - start[1], target[2] - start[2]] as const;
+    const d = snapped([target[0] - start[0], target[1] - start[1], target[2] - start[2]], snapStep());
     offsetVertices(studio, moved, from, d, ['vertex'], store.state.selectedVertex);
     const position = (v: number) => [...store.state.model!.vertices[v]] as Vec3;
     pump.push(() =>
@@ -115,15 +176,32 @@ export function mountDragTool(studio: Studio): void {
         ? { op: 'move-vertex', vertex, position: position(vertex) }
         : { op: 'move-vertices', vertices: moved, positions: moved.map(position) },
     );
-  });
+  }
+
+  /** The grid step of the panel's Snap box; 0 (off) when empty or not a number above 0. */
+  const snapStep = () => {
+    const step = evaluateExpression($<HTMLInputElement>('snap-step').value.trim());
+    return step !== null && step > 0 && Number.isFinite(step) ? step : 0;
+  };
+
+  // X, Y or Z during a drag locks it to that axis (again: free again), as in Blender; the
+  // key is the drag's, not the shortcut's (taken before keys.ts sees it).
+  document.addEventListener(
+    'keydown',
+    (ev) => {
+      const k = ['x', 'y', 'z'].indexOf(ev.key.toLowerCase());
+      if (!drag || k < 0 || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      ev.preventDefault();
+      ev.stopImmediatePropagation();
+      drag.axis = drag.axis === k ? null : (k as 0 | 1 | 2);
+      studio.say(drag.axis === null ? 'drag: free' : `drag: along ${'xyz'[drag.axis]} only`);
+      if (drag.at) dragTo(drag.at.x, drag.at.y);
+    },
+    true,
+  );
 
   async function endPress(ev: PointerEvent): Promise<void> {
-    if (drag && ev.pointerId === drag.pointer) {
-      drag = null;
-      frameView.controls.enabled = true;
-      await studio.endGesture();
-      return;
-    }
+    if (tool.dragging(ev.pointerId)) return tool.end(ev);
     if (box && ev.pointerId === box.pointer) {
       const opened = Math.hypot(ev.clientX - box.x, ev.clientY - box.y) >= CLICK_PIXELS;
       if (opened) {
@@ -164,4 +242,5 @@ export function mountDragTool(studio: Studio): void {
   }
   canvas.addEventListener('pointerup', (ev) => void endPress(ev));
   canvas.addEventListener('pointercancel', (ev) => void endPress(ev));
+  return tool;
 }

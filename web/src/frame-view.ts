@@ -509,14 +509,5 @@ export class FrameView extends Viewport {
     });
     return out;
   }
-
-  /** Where a drag of `vertex` to a client point lands: on the plane through the vertex
-   * that faces the camera. */
-  dragTarget(vertex: Vec3, x: number, y: number): Vec3 | null {
-    const normal = this.camera.getWorldDirection(new THREE.Vector3());
-    const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, new THREE.Vector3(...vertex));
-    const hit = this.ray(x, y).intersectPlane(plane, new THREE.Vector3());
-    return hit ? (hit.toArray() as Vec3) : null;
-  }
 }
 

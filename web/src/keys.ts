@@ -92,6 +92,9 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
       { keys: 'Shift+S', what: "Scale the selection, or the chosen curve, about its centre (the panel's factor)", matches: (e) => plain('s')(e) && e.shiftKey, run: () => (shapeModel() ? click('curve-scale')() : modeller.scaleSelection()) },
       { keys: 'Shift+R', what: "Rotate the selection, or the chosen curve, about its centre (the panel's axis and degrees)", matches: (e) => plain('r')(e) && e.shiftKey, run: () => (shapeModel() ? click('curve-rotate')() : modeller.rotateSelection()) },
       { keys: 'D', what: 'Draw force: drag a rectangle on a patch (on/off)', matches: plain('d'), run: () => modeller.toggleDrawForce() },
+      { keys: 'Ctrl+A', what: 'Select all: every frame and vertex', matches: (e) => ctrl(e) && !e.shiftKey && e.key.toLowerCase() === 'a', run: () => modeller.select('all') },
+      { keys: 'Ctrl+I', what: 'Invert the selection', matches: (e) => ctrl(e) && e.key.toLowerCase() === 'i', run: () => modeller.select('inverse') },
+      { keys: 'Ctrl+L', what: 'Select linked: every frame joined to the selection, with its vertices', matches: (e) => ctrl(e) && e.key.toLowerCase() === 'l', run: () => modeller.select('linked') },
     );
 
   // The help: one row per shortcut, and what the mouse does.

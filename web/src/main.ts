@@ -23,7 +23,7 @@ makeTransformGrids(); // before the parts that read its boxes mount
 const studio = new Studio();
 mountStatusBar(studio);
 mountSceneSync(studio);
-mountDragTool(studio); // before the orbit controls: a press on a handle must not orbit
+const dragTool = mountDragTool(studio); // before the orbit controls: a press on a handle must not orbit
 mountCurveEditor(studio); // the same for the handles of spectral and B-spline models
 studio.frameView.attachControls();
 studio.surfaceView.attachControls();
@@ -31,7 +31,7 @@ mountPanel(studio);
 mountTransform(studio);
 const toolbar = mountToolbar(studio);
 mountAnalysis(studio);
-const modeller = mountModeller(studio, toolbar.mayLeave, toolbar.refreshFiles);
+const modeller = mountModeller(studio, toolbar.mayLeave, toolbar.refreshFiles, dragTool);
 mountSolver(studio);
 mountKeys(studio, mountViews(studio), modeller);
 

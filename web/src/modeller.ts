@@ -15,9 +15,10 @@ import type { Gizmo } from './gizmo';
 import { modelBox } from './viewport';
 import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
 import type { Studio } from './studio';
-import { addFrameEdit, extrudeEdit, framesEdit, splitEdit, toggled, weldEdit } from './structure';
+import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
+import type { DragTool } from './drag';
 
 /** The modeller's tools, for the browser tests (test-hooks.ts). */
 export const modellerTools: { gizmo?: Gizmo; forces?: ForcesTool } = {};
@@ -40,9 +41,16 @@ export interface ModellerActions {
   scaleSelection(): void;
   rotateSelection(): void;
   toggleDrawForce(): void;
+  /** Select all, the inverse of the selection, or everything linked to it. */
+  select(how: 'all' | 'inverse' | 'linked'): void;
 }
 
-export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, refreshFiles: () => Promise<void>): ModellerActions {
+export function mountModeller(
+  studio: Studio,
+  mayLeave: () => Promise<boolean>,
+  refreshFiles: () => Promise<void>,
+  dragTool?: DragTool,
+): ModellerActions {
   const { store, surfaceView } = studio;
 
   /** Sends a structure edit made from the selection (or says what to select). */
@@ -73,7 +81,23 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     scaleSelection: () => {},
     rotateSelection: () => {},
     toggleDrawForce: () => {},
+    select: (how) => {
+      const model = store.state.model;
+      if (!model) return;
+      const picked = { vertices: store.state.selectedVertices, frames: store.state.selectedFrames };
+      const next = how === 'all' ? selectAll(model) : how === 'inverse' ? selectInverse(model, picked) : selectLinked(model, picked);
+      store.update(['selection', 'forces'], (s) => {
+        s.selectedVertices = next.vertices;
+        s.selectedVertex = next.vertices.length ? next.vertices[next.vertices.length - 1] : null;
+        s.selectedFrames = next.frames;
+        s.selectedForce = 0;
+      });
+      studio.say(`${next.vertices.length} vertices, ${next.frames.size} frames selected`);
+    },
   };
+  $('select-all').addEventListener('click', () => actions.select('all'));
+  $('select-inverse').addEventListener('click', () => actions.select('inverse'));
+  $('select-linked').addEventListener('click', () => actions.select('linked'));
   $('new-model').addEventListener('click', actions.newModel);
   $('extrude').addEventListener('click', actions.extrude);
   $('add-frame').addEventListener('click', actions.addFrame);
@@ -170,7 +194,7 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
     const vertex = picker.vertexAt(model.vertices, ev.clientX, ev.clientY, SURFACE_VERTEX_PICK_PIXELS, size);
     if (vertex !== null) {
       const mode = ev.shiftKey ? 'toggle' : ev.ctrlKey || ev.metaKey ? 'remove' : null;
-      const next = mode ? toggled(store.state.selectedVertices, vertex, mode) : [vertex];
+      const next = mode ? toggledInStack(store.state.selectedVertices, vertex, coincidentWith(model, vertex), mode) : [vertex];
       store.update(['selection'], (s) => {
         s.selectedVertices = next;
         s.selectedVertex = next.length ? next[next.length - 1] : null;
@@ -194,6 +218,31 @@ export function mountModeller(studio: Studio, mayLeave: () => Promise<boolean>, 
       });
     });
   });
+
+  // A press on a vertex seen on the surface (within the pick radius, not hidden behind it)
+  // drags it as its handle in the frame view does, in the plane facing this view's camera:
+  // taken in the capture phase of the view's container, before the orbit controls.
+  if (dragTool) {
+    const container = surfaceView.container;
+    container.addEventListener(
+      'pointerdown',
+      (ev) => {
+        const model = store.state.model;
+        if (ev.button !== 0 || !model || ev.shiftKey || ev.ctrlKey || ev.metaKey) return;
+        const size = modelBox(model).getSize(new THREE.Vector3()).length();
+        const vertex = picker.vertexAt(model.vertices, ev.clientX, ev.clientY, SURFACE_VERTEX_PICK_PIXELS, size);
+        if (vertex === null) return;
+        dragTool.begin(surfaceView, vertex, ev);
+        canvas.setPointerCapture(ev.pointerId);
+        press = null; // a drag, not a click on the patch
+      },
+      true,
+    );
+    canvas.addEventListener('pointermove', (ev) => dragTool.move(ev));
+    const end = (ev: PointerEvent) => void dragTool.end(ev);
+    canvas.addEventListener('pointerup', end);
+    canvas.addEventListener('pointercancel', end);
+  }
 
   // The box: taken in the capture phase of the view's container, before the orbit controls.
   let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;

@@ -1,7 +1,7 @@
 // The side panel of a vertex-frame model: the selected vertex's coordinates, the a1 / a2
 // sliders of the selected frames, and their forces (regions, f0 sliders).
 import type { Edit, FrameForce, Model, Region, SharedForce, Vec3 } from './api';
-import { $, readNumber } from './dom';
+import { $, numberBox, readNumber } from './dom';
 import type { State } from './store';
 import type { Studio } from './studio';
 
@@ -18,8 +18,10 @@ interface SliderRow {
   set(value: number | null): void;
 }
 
-/** A slider in [0, 1] with a magnification box; value = slider × magnification. The
- * gesture (pointer down to change) is one undo group. */
+/** A slider with its range box (the slider runs from 0 to the range: value = slider ×
+ * range) and a box with the actual value, which takes a typed number or expression (the
+ * range then follows it). The gesture (pointer down to change) is one undo group; a typed
+ * value or range is one step. */
 function sliderRow(
   studio: Studio,
   parent: HTMLElement,
@@ -28,7 +30,7 @@ function sliderRow(
   onValue: (value: number) => void,
 ): SliderRow {
   const row = document.createElement('div');
-  row.className = 'slider';
+  row.className = 'slider ranged';
   const name = document.createElement('span');
   name.className = 'name';
   name.textContent = label;
@@ -39,19 +41,37 @@ function sliderRow(
   range.step = '0.001';
   range.dataset.testid = id;
   const mag = document.createElement('input');
-  mag.type = 'number';
-  mag.step = 'any';
-  mag.title = 'magnification: value = slider × this';
+  numberBox(mag);
+  mag.title = `${label}: the slider's range (it runs from 0 to this)`;
   mag.dataset.testid = `${id}-mag`;
-  const value = document.createElement('span');
+  const value = document.createElement('input');
+  numberBox(value);
   value.className = 'value';
+  value.title = `${label} (a number or an expression: 1/3, 2*pi)`;
   value.dataset.testid = `${id}-value`;
-  row.append(name, range, mag, value);
+  const times = document.createElement('span');
+  times.className = 'range-label';
+  times.textContent = '0 …';
+  row.append(name, range, times, mag, value);
   parent.append(row);
 
   let magnification = 1; // the last number the box held
   const current = () => Number(range.value) * magnification;
-  const show = () => (value.textContent = String(+current().toFixed(4)));
+  const show = () => {
+    value.value = String(+current().toFixed(6));
+    value.classList.remove('invalid');
+    value.setCustomValidity('');
+  };
+  value.addEventListener('change', () => {
+    const v = readNumber(value, { label }, (message) => studio.showError(message));
+    if (v === null) return; // refused in place: nothing changes, nothing is recorded
+    magnification = niceMagnification(v);
+    mag.value = String(magnification);
+    range.value = String(v / magnification);
+    studio.beginGesture(id);
+    onValue(v); // exactly what was typed, not the slider's rounding of it
+    void studio.endGesture();
+  });
   let gesture = false; // from the first input to the change event: one undo group
   range.addEventListener('input', () => {
     if (!gesture) studio.beginGesture(id);
@@ -75,9 +95,9 @@ function sliderRow(
   return {
     set(v: number | null) {
       row.classList.toggle('disabled', v === null);
-      range.disabled = mag.disabled = v === null;
+      range.disabled = mag.disabled = value.disabled = v === null;
       if (v === null) {
-        value.textContent = '';
+        value.value = '';
         return;
       }
       magnification = niceMagnification(v);
@@ -85,7 +105,7 @@ function sliderRow(
       mag.classList.remove('invalid');
       mag.setCustomValidity('');
       range.value = String(v / magnification);
-      show();
+      if (document.activeElement !== value) value.value = String(+v.toFixed(6));
     },
   };
 }
@@ -264,7 +284,7 @@ export function mountPanel(studio: Studio): void {
       const region: Region = force.region ?? [0, 1, 0, 1];
       ['u0', 'u1', 'v0', 'v1'].forEach((name, j) => {
         const input = document.createElement('input');
-        input.type = 'number';
+        numberBox(input);
         input.step = '0.05';
         input.min = '0';
         input.max = '1';

@@ -14,10 +14,10 @@ export type CurveRef = number | string;
 
 /** The shape edits the server takes (include/pdesurf/edit_io.hpp: parseShapeEdit). */
 export type ShapeEdit =
-  | { op: 'move-curve-points'; curve: CurveRef; points: number[]; positions: Vec3[]; group?: string }
+  | { op: 'move-curve-points'; curve: CurveRef; points: number[]; positions: Vec3[]; falloff?: number; group?: string }
   | { op: 'transform-curve'; curve: CurveRef; translate?: Vec3; rotate?: { axis: Vec3; degrees: number }; scale?: number; center?: Vec3; from?: 'group-start'; group?: string }
   | { op: 'set-fourier'; curve: CurveRef; a0?: Vec3; a?: Vec3[]; b?: Vec3[]; group?: string }
-  | { op: 'set-operator'; operator?: 'ugail' | 'fu'; N?: number; a?: number; modes?: number; remainder?: boolean; group?: string }
+  | { op: 'set-operator'; operator?: 'ugail' | 'fu'; N?: number; a?: number; modes?: number; remainder?: boolean; method?: 'global' | 'c2' | 'shared-curves'; group?: string }
   | { op: 'set-spine'; spine: SpineEdit[]; group?: string }
   | { op: 'add-section'; index: number }
   | { op: 'remove-section'; index: number }
@@ -197,10 +197,19 @@ export function spineWith(spine: SpineEdit[], u: number[], points: Vec3[], k: nu
   return [...spine, { u, moved: points.map((p, i) => (i === k ? target : p)) }];
 }
 
+/** A point of a closed curve (a section, a spectral condition: the curves named by number)
+ * drags the curve round it too, in a compact bump this fraction of the curve's length each
+ * side (kStudioFalloff in include/pdesurf/session.hpp): the section stays smooth and the edit
+ * local. B-spline curves (named) are control polygons, local already. */
+export const CLOSED_CURVE_FALLOFF = 0.125;
+
 /** The edit that puts handle `h` at `target` (absolute: a drag's later steps replace its
  * earlier ones). `spine` is the model's spine list when the drag began. */
 export function dragEdit(h: Handle, target: Vec3, spine: SpineEdit[], view: ModelView | null): ShapeEdit {
-  if (h.kind === 'curve') return { op: 'move-curve-points', curve: h.curve, points: [h.point], positions: [target] };
+  if (h.kind === 'curve')
+    return typeof h.curve === 'number'
+      ? { op: 'move-curve-points', curve: h.curve, points: [h.point], positions: [target], falloff: CLOSED_CURVE_FALLOFF }
+      : { op: 'move-curve-points', curve: h.curve, points: [h.point], positions: [target] };
   if (h.kind === 'tangent') {
     const vector = [0, 1, 2].map((c) => (target[c] - h.base[c]) / TANGENT_DRAW) as Vec3;
     if (h.mean) return { op: 'set-fourier', curve: h.curve, a0: vector };

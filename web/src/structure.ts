@@ -83,9 +83,80 @@ export function splitEdit(frames: ReadonlySet<number>, parts: '4' | 'u' | 'v'): 
   return { edit: parts === '4' ? { op: 'split-frame', frame, parts: 4 } : { op: 'split-frame', frame, parts: 2, across: parts } };
 }
 
+/** A click's selection change on a handle that may stand on others (coincident vertices, a
+ * weld's two sides): `item` is the handle picked and the stack every vertex at its place.
+ * Shift+click (`toggle`) adds the first of the stack not yet selected, so that repeated
+ * shift+clicks pick each in turn, and removes `item` only when the whole stack is selected;
+ * ctrl+click (`remove`) removes the last selected of the stack. */
+export function toggledInStack(
+  list: readonly number[],
+  item: number,
+  stack: readonly number[],
+  mode: 'remove' | 'toggle',
+): number[] {
+  const inStack = stack.includes(item) ? stack : [item, ...stack];
+  if (mode === 'toggle') {
+    const free = inStack.find((v) => !list.includes(v));
+    return free === undefined ? toggled(list, item, 'remove') : toggled(list, free, 'add');
+  }
+  const picked = list.filter((v) => inStack.includes(v));
+  return picked.length ? toggled(list, picked[picked.length - 1], 'remove') : [...list];
+}
+
+/** The vertices standing exactly where vertex `v` stands (itself first). */
+export function coincidentWith(model: Model, v: number): number[] {
+  const p = model.vertices[v];
+  const out = [v];
+  model.vertices.forEach((q, i) => {
+    if (i !== v && q[0] === p[0] && q[1] === p[1] && q[2] === p[2]) out.push(i);
+  });
+  return out;
+}
+
 /** A selection toggled: `item` added, or removed when `remove` (or, with `toggle`, when present). */
 export function toggled(list: readonly number[], item: number, mode: 'add' | 'remove' | 'toggle'): number[] {
   const has = list.includes(item);
   if (mode === 'add' || (mode === 'toggle' && !has)) return has ? [...list] : [...list, item];
   return list.filter((x) => x !== item);
+}
+
+/** A selection of vertices (in pick order) and frames. */
+export interface Picked {
+  vertices: number[];
+  frames: Set<number>;
+}
+
+/** Every vertex a frame uses, and every frame (select all). */
+export function selectAll(model: Model): Picked {
+  const vertices = [...new Set(model.frames.flatMap((f) => f.vertices))].sort((a, b) => a - b);
+  return { vertices, frames: new Set(model.frames.map((_, f) => f)) };
+}
+
+/** What is not selected: the vertices frames use and the frames (select inverse). */
+export function selectInverse(model: Model, picked: Picked): Picked {
+  const all = selectAll(model);
+  return {
+    vertices: all.vertices.filter((v) => !picked.vertices.includes(v)),
+    frames: new Set([...all.frames].filter((f) => !picked.frames.has(f))),
+  };
+}
+
+/** Everything joined to the selection through shared vertices (select linked): the frames
+ * reached from the selected frames and from the frames of the selected vertices, frame to
+ * frame across any vertex they share, and all their vertices. */
+export function selectLinked(model: Model, picked: Picked): Picked {
+  const framesOf = new Map<number, number[]>();
+  model.frames.forEach((f, k) => f.vertices.forEach((v) => framesOf.set(v, [...(framesOf.get(v) ?? []), k])));
+  const reached = new Set<number>(picked.frames);
+  for (const v of picked.vertices) for (const k of framesOf.get(v) ?? []) reached.add(k);
+  const todo = [...reached];
+  while (todo.length) {
+    const k = todo.pop()!;
+    for (const v of model.frames[k].vertices)
+      for (const next of framesOf.get(v) ?? [])
+        if (!reached.has(next)) reached.add(next), todo.push(next);
+  }
+  const vertices = new Set<number>(picked.vertices);
+  for (const k of reached) for (const v of model.frames[k].vertices) vertices.add(v);
+  return { vertices: [...picked.vertices, ...[...vertices].filter((v) => !picked.vertices.includes(v)).sort((a, b) => a - b)], frames: reached };
 }

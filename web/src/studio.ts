@@ -205,14 +205,24 @@ export class Studio {
     this.modelChanged();
   }
 
-  /** A toolbar action: after the edits in flight; its error shown, a success clears it. */
-  async run(action: () => Promise<void>): Promise<void> {
-    try {
-      await this.pump.end();
-      await action();
-      this.store.update(['status'], (s) => (s.error = ''));
-    } catch (e) {
-      this.showError(e);
-    }
+  /** The toolbar actions not yet finished, in order (run()). */
+  private actions: Promise<void> = Promise.resolve();
+
+  /** A toolbar action: after the edits in flight and after every action before it, the
+   * model it reloads included (a transform typed twice, or one after an undo, starts from
+   * the server's model as the one before left it, never from a page copy a reload is still
+   * replacing); its error shown, a success clears it. */
+  run(action: () => Promise<void>): Promise<void> {
+    const next = this.actions.then(async () => {
+      try {
+        await this.pump.end();
+        await action();
+        this.store.update(['status'], (s) => (s.error = ''));
+      } catch (e) {
+        this.showError(e);
+      }
+    });
+    this.actions = next;
+    return next;
   }
 }

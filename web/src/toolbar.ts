@@ -98,8 +98,14 @@ export function mountToolbar(studio: Studio): { refreshFiles: () => Promise<void
 
   $('open').addEventListener('click', () =>
     void studio.run(async () => {
-      const path = $<HTMLSelectElement>('file-select').value;
-      if (!path || !(await mayLeave())) return;
+      const select = $<HTMLSelectElement>('file-select');
+      const path = select.value;
+      if (!path) return;
+      if (!(await mayLeave())) {
+        // Cancelled: the list names the model still open again, not the one not opened.
+        if ([...select.options].some((o) => o.value === store.state.path)) select.value = store.state.path;
+        return;
+      }
       await api.open(path);
       studio.say(`opened ${path}`);
       await studio.reloadAll(true);

@@ -22,7 +22,7 @@ export const TRANSFORM_GRIDS: Record<string, TransformGrid> = {
 export function transformGridHtml(g: TransformGrid): string {
   const id = (name: string) => `data-testid="${g.prefix}${name}"`;
   const button = (name: string, label: string) => `<button ${id(name + g.buttonSuffix)}>${label}</button>`;
-  const offset = (axis: string) => `<input ${id(`move-${axis}`)} type="number" step="0.1" value="0" title="d${axis}" />`;
+  const offset = (axis: string) => `<input ${id(`move-${axis}`)} type="text" inputmode="decimal" data-number step="0.1" value="0" title="d${axis}" />`;
   return [
     '<span class="name">move</span>',
     offset('x'),
@@ -31,11 +31,11 @@ export function transformGridHtml(g: TransformGrid): string {
     button('move', 'Move'),
     '<span class="name">rotate</span>',
     `<select ${id('rotate-axis')} title="axis through ${g.centre}"><option>x</option><option>y</option><option selected>z</option></select>`,
-    `<label><input ${id('rotate-degrees')} type="number" step="15" value="${g.degrees}" title="degrees" />°</label>`,
+    `<label><input ${id('rotate-degrees')} type="text" inputmode="decimal" data-number step="15" value="${g.degrees}" title="degrees" />°</label>`,
     '<span></span>',
     button('rotate', 'Rotate'),
     '<span class="name">scale</span>',
-    `<label>×<input ${id('scale-factor')} type="number" step="0.1" min="0" value="${g.factor}" title="factor" /></label>`,
+    `<label>×<input ${id('scale-factor')} type="text" inputmode="decimal" data-number step="0.1" min="0" value="${g.factor}" title="factor" /></label>`,
     '<span></span><span></span>',
     button('scale', 'Scale'),
   ].join('\n');

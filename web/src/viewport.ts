@@ -172,6 +172,7 @@ export class Viewport {
       );
     }
     distance = Math.max(distance * 1.12, size * 0.1);
+    this.stopMotion();
     this.camera.position.copy(center).addScaledVector(toCamera, distance);
     this.camera.near = distance / 100;
     this.camera.far = distance * 100;
@@ -183,6 +184,16 @@ export class Viewport {
   }
 
   private fitted = false;
+
+  /** Ends what is left of an orbit's, pan's or zoom's damping (OrbitControls keeps turning
+   * the camera for a while after the pointer is released): a fit or a view preset right
+   * after an orbit must land where it was asked to, not be turned on by the rest of it. */
+  stopMotion(): void {
+    const damping = this.controls.enableDamping;
+    this.controls.enableDamping = false;
+    this.controls.update(); // without damping, update() applies and clears what is left
+    this.controls.enableDamping = damping;
+  }
 
   /** From the camera's target toward the camera (front-right above until a first fit). */
   viewDirection(): THREE.Vector3 {
@@ -257,6 +268,31 @@ export class Viewport {
     const gl = this.renderer.getContext();
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
     return performance.now() - t0;
+  }
+
+  /** The point of the line through `vertex` along axis `axis` (0 x, 1 y, 2 z) nearest the
+   * ray through a client point: a drag locked to that axis. */
+  axisTarget(vertex: Vec3, axis: 0 | 1 | 2, x: number, y: number): Vec3 {
+    const start = new THREE.Vector3(...vertex);
+    const along = new THREE.Vector3().setComponent(axis, 1);
+    const reach = 1e6 * (1 + start.length());
+    const onAxis = new THREE.Vector3();
+    this.ray(x, y).distanceSqToSegment(
+      start.clone().addScaledVector(along, -reach),
+      start.clone().addScaledVector(along, reach),
+      undefined,
+      onAxis,
+    );
+    return onAxis.toArray() as Vec3;
+  }
+
+  /** Where a drag of `vertex` to a client point lands: on the plane through the vertex
+   * that faces the camera. */
+  dragTarget(vertex: Vec3, x: number, y: number): Vec3 | null {
+    const normal = this.camera.getWorldDirection(new THREE.Vector3());
+    const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, new THREE.Vector3(...vertex));
+    const hit = this.ray(x, y).intersectPlane(plane, new THREE.Vector3());
+    return hit ? (hit.toArray() as Vec3) : null;
   }
 
   /** A world point in client (page) pixels, and whether it lies in front of the camera. */

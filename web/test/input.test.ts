@@ -16,6 +16,25 @@ describe('parseNumber', () => {
     expect(parseNumber('1e400')).toEqual({ error: '1e400 is too large' });
   });
 
+  it('reads arithmetic expressions, parsed (never evaluated as code)', () => {
+    for (const [text, value] of [
+      ['1/3', 1 / 3],
+      ['2*pi', 2 * Math.PI],
+      [' -(0.5 + 1e-3) * 2 ', -1.002],
+      ['2^-1', 0.5],
+      ['-2^2', -4],
+      ['2^3^2', 512],
+      ['sqrt(2)/2', Math.SQRT1_2],
+      ['cos(pi)', -1],
+      ['1 - 2 - 3', -4],
+      ['8/4/2', 1],
+    ] as const)
+      expect(parseNumber(text)).toEqual({ value });
+    for (const text of ['1/', '2pi', '(1', '1)', 'alert(1)', 'pi()', 'sqrt 2', '1 2', 'Math.PI', '0/0'])
+      expect(parseNumber(text)).toHaveProperty('error');
+    expect(parseNumber('1/0')).toEqual({ error: '1/0 is too large' });
+  });
+
   it('applies the rule: range and non-zero', () => {
     expect(parseNumber('1.5', { min: 0, max: 1 })).toEqual({ error: 'must be at most 1' });
     expect(parseNumber('-0.1', { min: 0, max: 1 })).toEqual({ error: 'must be at least 0' });

@@ -2,7 +2,7 @@
 // selection names, and what each tool asks for when the selection does not fit.
 import { describe, expect, it } from 'vitest';
 import type { Model } from '../src/api';
-import { addFrameEdit, boundarySides, extrudeEdit, framesEdit, selectedBoundarySides, splitEdit, toggled, weldEdit } from '../src/structure';
+import { addFrameEdit, boundarySides, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, selectedBoundarySides, splitEdit, toggled, toggledInStack, weldEdit } from '../src/structure';
 
 /** Two frames side by side on a 5 × 3 lattice (vertex j * 5 + i), sharing the column i = 2. */
 function twoFrames(): Model {
@@ -54,5 +54,38 @@ describe('structure edits from the selection', () => {
     expect(toggled([3, 1, 2], 1, 'toggle')).toEqual([3, 2]);
     expect(toggled([3, 1], 1, 'add')).toEqual([3, 1]);
     expect(toggled([3, 1], 3, 'remove')).toEqual([1]);
+  });
+
+  it('picks each of coincident vertices in turn (shift+click on the same spot)', () => {
+    // Vertices 4 and 9 stand at one place; the pick finds 4 each time.
+    expect(toggledInStack([], 4, [4, 9], 'toggle')).toEqual([4]);
+    expect(toggledInStack([4], 4, [4, 9], 'toggle')).toEqual([4, 9]);
+    expect(toggledInStack([4, 9], 4, [4, 9], 'toggle')).toEqual([9]);
+    expect(toggledInStack([4, 9], 4, [4, 9], 'remove')).toEqual([4]);
+    expect(toggledInStack([2], 5, [5], 'toggle')).toEqual([2, 5]);
+    expect(toggledInStack([2, 5], 5, [5], 'toggle')).toEqual([2]);
+  });
+});
+
+describe('selection tools', () => {
+  // Two frames sharing a side (vertices 0..12) and a third apart (13..20).
+  const frame = (v: number[]) => ({ vertices: v });
+  const model = {
+    vertices: Array.from({ length: 21 }, (_, i) => [i, 0, 0] as [number, number, number]),
+    frames: [frame([0, 1, 2, 3, 4, 5, 6, 7]), frame([2, 8, 9, 10, 11, 12, 4, 3]), frame([13, 14, 15, 16, 17, 18, 19, 20])],
+  } as unknown as Model;
+
+  it('selects all, the inverse, and what is linked', () => {
+    const all = selectAll(model);
+    expect(all.vertices).toHaveLength(21);
+    expect([...all.frames]).toEqual([0, 1, 2]);
+    const inverse = selectInverse(model, { vertices: [0, 1], frames: new Set([2]) });
+    expect(inverse.vertices).toHaveLength(19);
+    expect(inverse.vertices).not.toContain(0);
+    expect([...inverse.frames]).toEqual([0, 1]);
+    const linked = selectLinked(model, { vertices: [9], frames: new Set() });
+    expect([...linked.frames].sort()).toEqual([0, 1]);
+    expect(linked.vertices[0]).toBe(9); // the pick order kept first
+    expect([...linked.vertices].sort((a, b) => a - b)).toEqual(Array.from({ length: 13 }, (_, i) => i));
   });
 });

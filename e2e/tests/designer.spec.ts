@@ -1,0 +1,301 @@
+// What a designer new to the studio met (issue 27), each as a regression test: quick
+// transforms pressed faster than the page reloads, a view preset right after an orbit, two
+// vertices at one place picked by clicking, a weld refused in the designer's words, a split
+// that leaves no vertex unused, and a point drag of a marching chain told about before it is
+// made and turned into the global chain.
+import { readFileSync } from 'node:fs';
+import path from 'node:path';
+import type { Page } from '@playwright/test';
+import { expect, newModel, openStudio, settle, shot, test } from './fixture';
+import type { Studio } from './fixture';
+
+/** A coordinate the studio computes from typed numbers (a quarter turn, a scale) is exact to
+ * rounding. */
+const ROUNDING = 1e-9;
+/** A preset's camera looks along its axis to rounding (no damping left over from an orbit). */
+const ON_AXIS = 1e-9;
+
+type Point = { x: number; y: number };
+const hook = <T>(page: Page, name: string, ...args: unknown[]) =>
+  page.evaluate(([n, a]) => (window as any).__studio[n as string](...(a as unknown[])), [name, args] as const) as Promise<T>;
+const model = async (studio: Studio) => (await studio.state()).model;
+const selected = async (page: Page) => (await hook<{ vertices: number[] }>(page, 'selection')).vertices;
+
+/** Selects every vertex of a model with a box round the whole frame view. */
+async function selectAll(page: Page): Promise<void> {
+  const box = (await page.getByTestId('frame-view').boundingBox())!;
+  await page.keyboard.down('Shift');
+  await page.mouse.move(box.x + 4, box.y + 40);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width - 4, box.y + box.height - 4, { steps: 4 });
+  await page.mouse.up();
+  await page.keyboard.up('Shift');
+}
+
+/** (x, y) turned about z by `degrees` round (cx, cy). */
+function turned(p: number[], c: number[], degrees: number): number[] {
+  const a = (degrees * Math.PI) / 180;
+  const [dx, dy] = [p[0] - c[0], p[1] - c[1]];
+  return [c[0] + Math.cos(a) * dx - Math.sin(a) * dy, c[1] + Math.sin(a) * dx + Math.cos(a) * dy, p[2]];
+}
+
+const close = (a: number[], b: number[]) => a.every((x, i) => Math.abs(x - b[i]) < ROUNDING);
+
+test.describe.configure({ timeout: 180_000 });
+
+test('quick transforms each start from the one before: two turns, a turn then a scale, an undo then a turn', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'grid', 'quick.json', 2, 1);
+  const m = await model(studio);
+  const centre = [0, 1, 2].map((c) => {
+    const xs = m.vertices.map((p: number[]) => p[c]);
+    return (Math.min(...xs) + Math.max(...xs)) / 2;
+  });
+  await page.getByTestId('view-top').click();
+  await selectAll(page);
+  await expect.poll(async () => (await selected(page)).length).toBe(m.vertices.length);
+  await page.getByTestId('selection-degrees').fill('90');
+  await page.locator('body').click({ position: { x: 5, y: 5 } }); // keys are keys again
+
+  // Shift+R twice at once (key repeat): two quarter turns, two undo steps.
+  await page.keyboard.press('Shift+R');
+  await page.keyboard.press('Shift+R');
+  await expect.poll(async () => (await studio.state()).undo).toBe(2);
+  await settle(page);
+  let now = await model(studio);
+  m.vertices.forEach((p: number[], v: number) => expect(close(now.vertices[v], turned(p, centre, 180))).toBe(true));
+
+  // Shift+R then Shift+S at once: the scale acts on the turned vertices.
+  await page.getByTestId('selection-scale').fill('2');
+  await page.locator('body').click({ position: { x: 5, y: 5 } });
+  const before = now.vertices;
+  await page.keyboard.press('Shift+R');
+  await page.keyboard.press('Shift+S');
+  await expect.poll(async () => (await studio.state()).undo).toBe(4);
+  await settle(page);
+  now = await model(studio);
+  before.forEach((p: number[], v: number) => {
+    const t = turned(p, centre, 90);
+    expect(close(now.vertices[v], [0, 1, 2].map((c) => centre[c] + 2 * (t[c] - centre[c])))).toBe(true);
+  });
+
+  // Ctrl+Z then Shift+R at once: the turn acts on the vertices as the undo left them (two
+  // changes: the undo's and the turn's revision).
+  const revision = (await studio.state()).revision;
+  await page.keyboard.press('Control+z');
+  await page.keyboard.press('Shift+R');
+  await expect.poll(async () => (await studio.state()).revision).toBe(revision + 2);
+  expect((await studio.state()).undo).toBe(4);
+  await settle(page);
+  now = await model(studio);
+  before.forEach((p: number[], v: number) => expect(close(now.vertices[v], turned(p, centre, 180))).toBe(true));
+});
+
+test('a view preset right after an orbit looks exactly along its axis', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  const box = (await page.getByTestId('surface-view').boundingBox())!;
+  const at = { x: box.x + box.width / 2, y: box.y + box.height / 2 };
+  for (const [key, direction] of [
+    ['1', [0, -1, 0]],
+    ['3', [1, 0, 0]],
+  ] as const) {
+    // A quick orbit, released while still turning; the preset's key at once.
+    await page.mouse.move(at.x, at.y);
+    await page.mouse.down();
+    await page.mouse.move(at.x + 160, at.y + 40, { steps: 3 });
+    await page.mouse.up();
+    await page.keyboard.press(key);
+    await page.waitForTimeout(500); // damping would have turned the camera by now
+    const cameras = await hook<Record<string, { direction: number[] }>>(page, 'cameras');
+    for (const view of ['frame', 'surface'])
+      cameras[view].direction.forEach((x, i) => expect(Math.abs(x - direction[i])).toBeLessThan(ON_AXIS));
+  }
+});
+
+test('two vertices at one place are both picked by shift+clicks; a weld the frames cannot take is refused in plain words', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'grid', 'weld.json', 3, 1);
+  // Two frames apart (the middle one deleted), the second's corner P1 moved onto the first's
+  // P3: two vertices at one place, on no one frame.
+  expect(await hook<string>(page, 'edit', { op: 'delete-frames', frames: [1] })).toBe('');
+  let m = await model(studio);
+  const a = m.frames[0].vertices[2];
+  const b = m.frames[1].vertices[0];
+  expect(await hook<string>(page, 'edit', { op: 'move-vertex', vertex: b, position: m.vertices[a] })).toBe('');
+  await page.reload();
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+  const p = await hook<Point>(page, 'vertexScreen', a);
+  await page.keyboard.down('Shift');
+  await page.mouse.click(p.x, p.y);
+  await page.mouse.click(p.x, p.y);
+  await page.keyboard.up('Shift');
+  await expect.poll(async () => [...(await selected(page))].sort((x, y) => x - y)).toEqual([a, b].sort((x, y) => x - y));
+  await page.screenshot({ path: shot('designer-coincident.png') });
+  await page.keyboard.press('w');
+  await expect.poll(async () => (await model(studio)).vertices.length).toBe(m.vertices.length - 1);
+
+  // The frames' other corners of the sides that now touch welded too: the sides would share
+  // their ends but not their middles. Refused, said with frames and vertices.
+  m = await model(studio);
+  const c = m.frames[0].vertices[4];
+  const d = m.frames[1].vertices[6];
+  await page.waitForTimeout(300);
+  const pc = await hook<Point>(page, 'vertexScreen', c);
+  const pd = await hook<Point>(page, 'vertexScreen', d);
+  await page.mouse.click(pc.x, pc.y);
+  await page.keyboard.down('Shift');
+  await page.mouse.click(pd.x, pd.y);
+  await page.keyboard.up('Shift');
+  await expect.poll(async () => selected(page)).toEqual([c, d]);
+  await page.keyboard.press('w');
+  const error = page.getByTestId('error');
+  await expect(error).toContainText('would meet at the two ends of a side');
+  const text = (await error.textContent()) ?? '';
+  expect(text).not.toContain('$.');
+  expect(text).not.toMatch(/P\d-P\d-P\d/);
+  expect((await model(studio)).vertices.length).toBe(m.vertices.length);
+});
+
+test('a split adds no vertex that no frame uses', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'single', 'split.json');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(300);
+  await expect(async () => {
+    const q = await hook<Point>(page, 'patchScreen', 0);
+    await page.mouse.click(q.x, q.y);
+    expect((await hook<{ frames: number[] }>(page, 'selection')).frames).toEqual([0]);
+  }).toPass({ timeout: 30000 });
+  await page.keyboard.press('s');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(4);
+  const m = await model(studio);
+  const used = new Set<number>(m.frames.flatMap((f: { vertices: number[] }) => f.vertices));
+  expect(m.vertices.length).toBe(21);
+  expect(used.size).toBe(m.vertices.length);
+});
+
+test.describe('a marching chain', () => {
+  test.use({ example: 'vase-sections.json' });
+  test('is told about before a drag, and the global chain is one click', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    // The example is global: made a marching chain through the API, the page warns.
+    expect(await hook<string>(page, 'edit', { op: 'set-operator', method: 'c2' })).toBe('');
+    await page.reload();
+    await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+    await expect(page.getByTestId('drag-advice')).toBeVisible();
+    await expect(page.getByTestId('drag-advice-text')).toContainText('marching method "c2"');
+    await page.screenshot({ path: shot('designer-drag-advice.png') });
+    await page.getByTestId('use-global-chain').click();
+    await expect(page.getByTestId('drag-advice')).toBeHidden();
+    expect((await model(studio)).method).toBe('global');
+  });
+});
+
+test('select linked, invert, all, with moves typed as expressions: the saved file has the numbers', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'grid', 'islands.json', 3, 1);
+  // Two islands: frame 0, and the old frame 2 (the middle one deleted).
+  expect(await hook<string>(page, 'edit', { op: 'delete-frames', frames: [1] })).toBe('');
+  await page.reload();
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+  const m = await model(studio);
+  const island0 = [...new Set<number>(m.frames[0].vertices)];
+  const island1 = [...new Set<number>(m.frames[1].vertices)];
+  const p = await hook<Point>(page, 'vertexScreen', m.frames[0].vertices[1]);
+  await page.mouse.click(p.x, p.y);
+  await page.keyboard.press('Control+l');
+  await expect.poll(async () => [...(await selected(page))].sort((a, b) => a - b)).toEqual(island0.sort((a, b) => a - b));
+
+  // The linked island moved by dz = 2*pi/10, typed as such.
+  const moveBy = async (axis: string, text: string) => {
+    for (const a of ['x', 'y', 'z']) await page.getByTestId(`offset-${a}`).fill(a === axis ? text : '0');
+    await page.getByTestId('offset-apply').click();
+    await settle(page);
+  };
+  await moveBy('z', '2*pi/10');
+  await expect.poll(async () => (await studio.state()).undo).toBe(2);
+  // Inverted: the other island, moved by dx = 1/3.
+  await page.locator('body').click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press('Control+i');
+  await expect.poll(async () => [...(await selected(page))].sort((a, b) => a - b)).toEqual(island1.sort((a, b) => a - b));
+  await moveBy('x', '1/3');
+  await expect.poll(async () => (await studio.state()).undo).toBe(3);
+  // All: every vertex moved by dy = -sqrt(2)/2.
+  await page.locator('body').click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press('Control+a');
+  await expect.poll(async () => (await selected(page)).length).toBe(m.vertices.length);
+  await moveBy('y', '-sqrt(2)/2');
+  await expect.poll(async () => (await studio.state()).undo).toBe(4);
+  await page.screenshot({ path: shot('designer-select.png') });
+
+  await page.keyboard.press('Control+s');
+  await expect(page.getByTestId('dirty')).toBeHidden();
+  const saved = JSON.parse(readFileSync(path.join(studio.root, 'islands.json'), 'utf8'));
+  m.vertices.forEach((q: number[], v: number) => {
+    const expected = [
+      q[0] + (island1.includes(v) ? 1 / 3 : 0),
+      q[1] - Math.sqrt(2) / 2,
+      q[2] + (island0.includes(v) ? (2 * Math.PI) / 10 : 0),
+    ];
+    expect(close(saved.vertices[v], expected)).toBe(true);
+  });
+});
+
+test('X during a drag locks it to x, and a snap step rounds the move: the saved file has it', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'single', 'snap.json');
+  await page.getByTestId('view-iso').click();
+  await page.waitForTimeout(400);
+  await page.getByTestId('snap-step').fill('1/8');
+  await page.locator('body').click({ position: { x: 5, y: 5 } });
+  const m = await model(studio);
+  const v = m.frames[0].vertices[4]; // P5, the corner (1, 1, 0)
+  const p = await hook<Point>(page, 'vertexScreen', v);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + 30, p.y - 40, { steps: 3 });
+  await page.keyboard.press('x'); // the drag's axis lock, not Delete frames
+  await page.mouse.move(p.x + 90, p.y - 60, { steps: 4 });
+  await page.mouse.up();
+  await settle(page);
+  await page.screenshot({ path: shot('designer-axis-snap.png') });
+  await page.keyboard.press('Control+s');
+  await expect(page.getByTestId('dirty')).toBeHidden();
+  const saved = JSON.parse(readFileSync(path.join(studio.root, 'snap.json'), 'utf8'));
+  expect(saved.frames).toHaveLength(1);
+  const [x, y, z] = saved.vertices[v];
+  const dx = x - m.vertices[v][0];
+  expect(dx).toBeGreaterThan(0.1);
+  expect(Math.abs(dx * 8 - Math.round(dx * 8))).toBeLessThan(ROUNDING); // steps of 1/8
+  expect(y).toBe(m.vertices[v][1]);
+  expect(z).toBe(m.vertices[v][2]);
+  expect((await studio.state()).undo).toBe(1);
+});
+
+test('a vertex dragged in the shaded surface view moves as its handle would: one undo step', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'single', 'shaded.json');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+  const m = await model(studio);
+  const v = m.frames[0].vertices[4];
+  const p = await hook<Point & { visible: boolean }>(page, 'vertexSurfaceScreen', v);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + 60, p.y, { steps: 6 }); // top view: screen right is +x
+  await page.mouse.up();
+  await settle(page);
+  await page.screenshot({ path: shot('designer-surface-drag.png') });
+  const now = (await model(studio)).vertices[v];
+  expect(now[0] - m.vertices[v][0]).toBeGreaterThan(0.05);
+  expect(Math.abs(now[1] - m.vertices[v][1])).toBeLessThan(0.02);
+  expect(Math.abs(now[2] - m.vertices[v][2])).toBeLessThan(0.02);
+  expect((await studio.state()).undo).toBe(1);
+  // The camera did not orbit: still the top view.
+  const cameras = await hook<Record<string, { direction: number[] }>>(page, 'cameras');
+  expect(cameras.surface.direction[2]).toBeGreaterThan(0.999);
+});
