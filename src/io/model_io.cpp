@@ -12,6 +12,7 @@
 
 #include "io/json_reader.hpp"
 #include "io/json_writer.hpp"
+#include "io/middle_mismatch.hpp"
 #include "pdesurf/model_io.hpp"
 
 namespace pdesurf {
@@ -77,15 +78,13 @@ VertexFrameModel detail::parseVertexFrameDocument(const Json& doc, const Reader&
   const FrameTopology topo = buildTopology(model);
   if (topo.error.kind == TopologyError::Kind::MiddleVertexDiffers) {
     const FrameSide a = topo.error.first, b = topo.error.second;
-    const auto sa = sideSlots(a.side), sb = sideSlots(b.side);
-    const auto& fa = model.frames[a.frame].vertices;
-    const auto& fb = model.frames[b.frame].vertices;
+    const detail::MiddleMismatch m = detail::middleMismatch(model, topo.error);
     rd.fail(fmt::format("$.frames[{}].vertices", b.frame),
             fmt::format("its edge {} shares corner vertices {} and {} with edge {} of frames[{}], "
                         "but its middle vertex is {} where frames[{}] has {}: frames that share "
                         "an edge share all three of its vertices",
-                        sideName(b.side), fb[sb[0]], fb[sb[2]], sideName(a.side), a.frame,
-                        fb[sb[1]], a.frame, fa[sa[1]]));
+                        sideName(b.side), m.corner0, m.corner1, sideName(a.side), a.frame,
+                        m.middleSecond, a.frame, m.middleFirst));
   }
   return model;
 }

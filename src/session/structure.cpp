@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "io/json_reader.hpp"
+#include "io/middle_mismatch.hpp"
 #include "pdesurf/frame_lattice.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
@@ -134,15 +135,13 @@ void checkResult(const VertexFrameModel& next) {
   // Said in a designer's words (the file check below would name the file's fields).
   if (topology.error.kind == TopologyError::Kind::MiddleVertexDiffers) {
     const FrameSide a = topology.error.first, b = topology.error.second;
-    const auto sa = sideSlots(a.side), sb = sideSlots(b.side);
-    const auto& va = next.frames[a.frame].vertices;
-    const auto& vb = next.frames[b.frame].vertices;
+    const detail::MiddleMismatch m = detail::middleMismatch(next, topology.error);
     refuse("", fmt::format("frames {} and {} would meet at the two ends of a side (vertices {} "
                            "and {}) but not at its middle (vertex {} of frame {}, vertex {} of "
                            "frame {}): weld the middles too, or weld the two whole edges "
                            "(select the corners of both)",
-                           a.frame, b.frame, vb[sb[0]], vb[sb[2]], va[sa[1]], a.frame, vb[sb[1]],
-                           b.frame));
+                           a.frame, b.frame, m.corner0, m.corner1, m.middleFirst, a.frame,
+                           m.middleSecond, b.frame));
   }
   // Everything a file is checked for (indices, forces solvable).
   (void)parseVertexFrameModel(serializeVertexFrameModel(next), "edit");
