@@ -1,5 +1,6 @@
 // The automatic layout: any topology (closed, two boundary loops, genus 1, two components),
-// a valid manifold frame model with no folds, fits that never get worse with more frames,
+// a valid manifold frame model with no folds (at the start, and almost none after the fit),
+// fits that never get worse with more frames,
 // and the search for a target RMS.
 #include <gtest/gtest.h>
 
@@ -164,6 +165,18 @@ TEST(AutoLayout, FittedLayoutsFoldAlmostNothingOnTheClosedFormShapes) {
     EXPECT_LE(f.fit.iterations.back().measure.foldedSamples,
               f.fit.iterations.front().measure.foldedSamples);
   }
+}
+
+TEST(AutoLayout, TheMushroomFittedFromTheDefaultLayoutFoldsBelowTheIssuesBound) {
+  // A real scan: CGAL's mushroom.off at the default 200 frames folds 0.004 % of its area
+  // and deviates 3.4° after the fit (docs/rebuild.md, "The automatic layout, fitted
+  // fold-free"; the 8 × 8 grid folds 0.65 %).
+  const Mesh mushroom = readMesh(testing::cgalData("mushroom.off"));
+  const AutoFit f = fitAutoLayout(mushroom, {}, {}, 17, {}, "mushroom");
+  const NormalDeviation n = normalDeviation(tessellate(solve(f.fit.model), {17}), mushroom);
+  EXPECT_FALSE(n.reversed);
+  EXPECT_LT(n.foldedArea, kFittedFoldedArea);
+  EXPECT_LT(n.rmsDegrees, kFittedNormalDeviation);
 }
 
 TEST(AutoLayout, MoreFramesNeverFitWorse) {
