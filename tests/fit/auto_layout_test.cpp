@@ -1,7 +1,6 @@
 // The automatic layout: any topology (closed, two boundary loops, genus 1, two components),
 // a valid manifold frame model with no folds (at the start, and almost none after the fit),
-// fits that never get worse with more frames,
-// and the search for a target RMS.
+// fits that never get worse with more frames, and the search for a target RMS.
 #include <gtest/gtest.h>
 
 #include <array>
