@@ -146,6 +146,16 @@ TEST(AutoLayout, LaysValidFrameModelsOnClosedOpenAndGenusOneMeshesWithoutFolds) 
   }
 }
 
+/// The fitted model's normals (its tessellation at 17 a side, as `compare` measures it) agree
+/// with the mesh's: it faces the same way, folds below kFittedFoldedArea and deviates less
+/// than kFittedNormalDeviation.
+void expectAlmostNoFolds(const AutoFit& f, const Mesh& mesh) {
+  const NormalDeviation n = normalDeviation(tessellate(solve(f.fit.model), {17}), mesh);
+  EXPECT_FALSE(n.reversed);
+  EXPECT_LT(n.foldedArea, kFittedFoldedArea);
+  EXPECT_LT(n.rmsDegrees, kFittedNormalDeviation);
+}
+
 TEST(AutoLayout, FittedLayoutsFoldAlmostNothingOnTheClosedFormShapes) {
   // At the end of the fit (the fold-free term on, as by default), measured as `compare`
   // measures a model: its tessellation's normals against the mesh's.
@@ -156,10 +166,7 @@ TEST(AutoLayout, FittedLayoutsFoldAlmostNothingOnTheClosedFormShapes) {
     FitOptions fit;
     fit.maxIterations = kQuickIterations;
     const AutoFit f = fitAutoLayout(s.mesh, o, fit, 17, {}, s.name);
-    const NormalDeviation n = normalDeviation(tessellate(solve(f.fit.model), {17}), s.mesh);
-    EXPECT_FALSE(n.reversed);
-    EXPECT_LT(n.foldedArea, kFittedFoldedArea);
-    EXPECT_LT(n.rmsDegrees, kFittedNormalDeviation);
+    expectAlmostNoFolds(f, s.mesh);
     // The fit unfolds what the layout folded: no more folded samples than at its start.
     EXPECT_LE(f.fit.iterations.back().measure.foldedSamples,
               f.fit.iterations.front().measure.foldedSamples);
@@ -172,10 +179,7 @@ TEST(AutoLayout, TheMushroomFittedFromTheDefaultLayoutFoldsBelowTheIssuesBound) 
   // fold-free"; the 8 × 8 grid folds 0.65 %).
   const Mesh mushroom = readMesh(testing::cgalData("mushroom.off"));
   const AutoFit f = fitAutoLayout(mushroom, {}, {}, 17, {}, "mushroom");
-  const NormalDeviation n = normalDeviation(tessellate(solve(f.fit.model), {17}), mushroom);
-  EXPECT_FALSE(n.reversed);
-  EXPECT_LT(n.foldedArea, kFittedFoldedArea);
-  EXPECT_LT(n.rmsDegrees, kFittedNormalDeviation);
+  expectAlmostNoFolds(f, mushroom);
 }
 
 TEST(AutoLayout, MoreFramesNeverFitWorse) {
