@@ -1,6 +1,6 @@
 // The automatic layout: any topology (closed, two boundary loops, genus 1, two components),
-// a valid manifold frame model with no folds, fits that never get worse with more frames,
-// and the search for a target RMS.
+// a valid manifold frame model with no folds (at the start, and almost none after the fit),
+// fits that never get worse with more frames, and the search for a target RMS.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -22,8 +22,10 @@ namespace pdesurf {
 namespace {
 
 /// "Never worse": a layout with more frames may fit worse than one with fewer by this fraction
-/// of the RMS only (the sampling noise of the measure), never more.
-constexpr double kNeverWorseSlack = 0.02;
+/// of the RMS only (the sampling noise of the measure, and where both fits are at the mesh's
+/// facets: the sphere's 60 and 120 frames fit to 0.0401 % and 0.0412 % with the fold-free
+/// term, whose pull towards conformal frames costs a little RMS), never more.
+constexpr double kNeverWorseSlack = 0.03;
 
 /// Every frame corner lies on the mesh, so within the meshes' chord error of the exact
 /// surface (below 1 - cos(π/24) ≈ 3.4e-3 of the radius for the meshes below); the middle of
@@ -46,6 +48,15 @@ constexpr double kLayoutFoldAllowance = 0.005;
 /// Fit iterations in the never-worse test on the closed-form shapes (the same for every
 /// count; half the default, to keep the test quick).
 constexpr std::uint32_t kQuickIterations = 15;
+
+/// The issue's bound on a fitted model's folded area (a share of its area; the polygon peer
+/// of the lion head folds 0.02 % at 0.18 % RMS). At kFoldFreeFrames the torus folds 0.006 %
+/// after the fit; at 216 frames 0.16 % (docs/rebuild.md, Limits).
+constexpr double kFittedFoldedArea = 1e-3;
+/// The fitted models' RMS normal deviation (degrees) stays below this: the torus's is 4.7°,
+/// the sphere's 2.9° (the polygon peers of the lion head and three_peaks at 0.07–0.18 %
+/// RMS deviate 7.6–7.8° and 4.4–6.7°).
+constexpr double kFittedNormalDeviation = 6.0;
 
 /// The frame counts the tests ask for: three, growing.
 constexpr std::uint32_t kCounts[] = {60, 120, 240};
@@ -135,6 +146,42 @@ TEST(AutoLayout, LaysValidFrameModelsOnClosedOpenAndGenusOneMeshesWithoutFolds) 
       EXPECT_LE(m.foldedSamples, layout == &split ? 0.0 : kLayoutFoldAllowance * m.samples);
     }
   }
+}
+
+/// The fitted model's normals (its tessellation at 17 a side, as `compare` measures it) agree
+/// with the mesh's: it faces the same way, folds below kFittedFoldedArea and deviates less
+/// than kFittedNormalDeviation.
+void expectAlmostNoFolds(const AutoFit& f, const Mesh& mesh) {
+  const NormalDeviation n = normalDeviation(tessellate(solve(f.fit.model), {17}), mesh);
+  EXPECT_FALSE(n.reversed);
+  EXPECT_LT(n.foldedArea, kFittedFoldedArea);
+  EXPECT_LT(n.rmsDegrees, kFittedNormalDeviation);
+}
+
+TEST(AutoLayout, FittedLayoutsFoldAlmostNothingOnTheClosedFormShapes) {
+  // At the end of the fit (the fold-free term on, as by default), measured as `compare`
+  // measures a model: its tessellation's normals against the mesh's.
+  for (const Named& s : shapes()) {
+    SCOPED_TRACE(s.name);
+    AutoLayoutOptions o;
+    o.frames = kFoldFreeFrames;
+    FitOptions fit;
+    fit.maxIterations = kQuickIterations;
+    const AutoFit f = fitAutoLayout(s.mesh, o, fit, 17, {}, s.name);
+    expectAlmostNoFolds(f, s.mesh);
+    // The fit unfolds what the layout folded: no more folded samples than at its start.
+    EXPECT_LE(f.fit.iterations.back().measure.foldedSamples,
+              f.fit.iterations.front().measure.foldedSamples);
+  }
+}
+
+TEST(AutoLayout, TheMushroomFittedFromTheDefaultLayoutFoldsBelowTheIssuesBound) {
+  // A real scan: CGAL's mushroom.off at the default 200 frames folds 0.004 % of its area
+  // and deviates 3.4° after the fit (docs/rebuild.md, "The automatic layout, fitted
+  // fold-free"; the 8 × 8 grid folds 0.65 %).
+  const Mesh mushroom = readMesh(testing::cgalData("mushroom.off"));
+  const AutoFit f = fitAutoLayout(mushroom, {}, {}, 17, {}, "mushroom");
+  expectAlmostNoFolds(f, mushroom);
 }
 
 TEST(AutoLayout, MoreFramesNeverFitWorse) {
