@@ -2,7 +2,9 @@
 // transforms pressed faster than the page reloads, a view preset right after an orbit, two
 // vertices at one place picked by clicking, a weld refused in the designer's words, a split
 // that leaves no vertex unused, and a point drag of a marching chain told about before it is
-// made and turned into the global chain.
+// made and turned into the global chain; and the designer tools, each checked in the saved
+// file: selections and typed moves, axis lock and snap, drags in the shaded view, Delete on the
+// selection, Split on several frames or all, symmetric drags and Mirror.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
