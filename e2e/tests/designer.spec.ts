@@ -2,7 +2,9 @@
 // transforms pressed faster than the page reloads, a view preset right after an orbit, two
 // vertices at one place picked by clicking, a weld refused in the designer's words, a split
 // that leaves no vertex unused, and a point drag of a marching chain told about before it is
-// made and turned into the global chain.
+// made and turned into the global chain; and the designer tools, each checked in the saved
+// file: selections and typed moves, axis lock and snap, drags in the shaded view, Delete on the
+// selection, Split on several frames or all, symmetric drags and Mirror.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
@@ -298,4 +300,163 @@ test('a vertex dragged in the shaded surface view moves as its handle would: one
   // The camera did not orbit: still the top view.
   const cameras = await hook<Record<string, { direction: number[] }>>(page, 'cameras');
   expect(cameras.surface.direction[2]).toBeGreaterThan(0.999);
+});
+
+/** Opens the studio on a new model (New…) seen from the top. */
+async function newTopView(page: Page, studio: Studio, kind: string, file: string, u = 1, v = 1): Promise<void> {
+  await openStudio(page, studio);
+  await newModel(page, kind, file, u, v);
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+}
+
+/** Clicks frame `frame`'s patch in the surface view (shift: adds it to the selection). */
+async function clickPatch(page: Page, frame: number, shift = false): Promise<void> {
+  await expect(async () => {
+    const q = await hook<Point>(page, 'patchScreen', frame);
+    if (shift) await page.keyboard.down('Shift');
+    await page.mouse.click(q.x, q.y);
+    if (shift) await page.keyboard.up('Shift');
+    expect((await hook<{ frames: number[] }>(page, 'selection')).frames).toContain(frame);
+  }).toPass({ timeout: 30000 });
+}
+
+/** The saved file of `name` in the studio's root, after Ctrl+S. */
+async function saved(page: Page, studio: Studio, name: string) {
+  await page.keyboard.press('Control+s');
+  await expect(page.getByTestId('dirty')).toBeHidden();
+  return JSON.parse(readFileSync(path.join(studio.root, name), 'utf8'));
+}
+
+test('Delete deletes the selected frames in one undo step; Shift+Delete removes a force instead', async ({ page, studio }) => {
+  await newTopView(page, studio, 'grid', 'delete.json', 3, 1);
+  const m = await model(studio);
+  await clickPatch(page, 0);
+  await clickPatch(page, 2, true);
+  expect((await hook<{ frames: number[] }>(page, 'selection')).frames.sort()).toEqual([0, 2]);
+  // Shift+Delete with no force selected removes nothing (a frame's forces, not frames).
+  await page.keyboard.press('Shift+Delete');
+  await expect(page.getByTestId('status')).toContainText('select a frame and one of its forces');
+  expect((await model(studio)).frames).toHaveLength(3);
+  await page.keyboard.press('Delete');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(1);
+  expect((await studio.state()).undo).toBe(1);
+  const file = await saved(page, studio, 'delete.json');
+  // What is left is the old middle frame, its 8 vertices where they were, in its order.
+  expect(file.frames).toHaveLength(1);
+  expect(file.vertices).toHaveLength(8);
+  const kept = m.frames[1].vertices.map((v: number) => m.vertices[v]);
+  expect(file.frames[0].vertices.map((v: number) => file.vertices[v])).toEqual(kept);
+  await page.keyboard.press('Control+z');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(3);
+});
+
+/** Every vertex of a saved file is used by a frame, and all of them lie on the flat grid's
+ * lattice of `step` (a split places new vertices on the surface: the plane z = 0). */
+function onLattice(file: { vertices: number[][]; frames: { vertices: number[] }[] }, step: number): void {
+  const used = new Set(file.frames.flatMap((f) => f.vertices));
+  expect(used.size).toBe(file.vertices.length);
+  for (const p of file.vertices) {
+    for (const c of [0, 1]) expect(Math.abs(p[c] / step - Math.round(p[c] / step))).toBeLessThan(ROUNDING);
+    expect(Math.abs(p[2])).toBeLessThan(ROUNDING);
+  }
+}
+
+test('Split 4 on several frames, then on all: shared edges stay shared, no vertex unused, one undo step each', async ({ page, studio }) => {
+  await newTopView(page, studio, 'grid', 'subdivide.json', 3, 1);
+  // Frames 0 and 2 into 2 × 2: the cut across v runs on through frame 1, which becomes 2.
+  await clickPatch(page, 0);
+  await clickPatch(page, 2, true);
+  await page.keyboard.press('s');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(4 + 2 + 4);
+  expect((await studio.state()).undo).toBe(1);
+  await page.screenshot({ path: shot('designer-split-several.png') });
+  // 11 columns × 5 rows of lattice points less the 10 frames' centres.
+  let file = await saved(page, studio, 'subdivide.json');
+  expect(file.vertices).toHaveLength(11 * 5 - 10);
+  onLattice(file, 0.25);
+  await page.keyboard.press('Control+z');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(3);
+
+  // Ctrl+A, S: every frame into 2 × 2, a 6 × 2 grid of frames (13 × 5 points less 12 centres).
+  await page.keyboard.press('Control+a');
+  await page.keyboard.press('s');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(12);
+  expect((await studio.state()).undo).toBe(1);
+  await page.screenshot({ path: shot('designer-subdivide-all.png') });
+  file = await saved(page, studio, 'subdivide.json');
+  expect(file.vertices).toHaveLength(13 * 5 - 12);
+  onLattice(file, 0.25);
+});
+
+test('symmetry across x = 0: a drag moves the mirror partner mirrored and keeps a vertex on the plane on it', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'grid', 'mirror.json', 2, 1);
+  // Centred on x = 0: x from -1 to 1.
+  const m0 = await model(studio);
+  const centred = m0.vertices.map((p: number[]) => [p[0] - 1, p[1], p[2]]);
+  expect(await hook<string>(page, 'edit', { op: 'move-vertices', vertices: centred.map((_: unknown, v: number) => v), positions: centred })).toBe('');
+  await page.reload();
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await page.getByTestId('symmetry').selectOption('x');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+  const find = (x: number, y: number) => centred.findIndex((p: number[]) => Math.abs(p[0] - x) < ROUNDING && Math.abs(p[1] - y) < ROUNDING);
+  const corner = find(-1, 0), partner = find(1, 0), middle = find(0, 1);
+  const drag = async (v: number, dx: number, dy: number) => {
+    const p = await hook<Point>(page, 'vertexScreen', v);
+    await page.mouse.move(p.x, p.y);
+    await page.mouse.down();
+    await page.mouse.move(p.x + dx, p.y + dy, { steps: 4 });
+    await page.mouse.up();
+    await settle(page);
+  };
+  await drag(corner, 30, 20); // top view: screen right is +x, down is -y
+  await drag(middle, 25, -25);
+  await page.screenshot({ path: shot('designer-symmetry.png') });
+  const file = await saved(page, studio, 'mirror.json');
+  const c = file.vertices[corner], q = file.vertices[partner], mid = file.vertices[middle];
+  expect(c[0] - centred[corner][0]).toBeGreaterThan(0.05);
+  expect(c[1] - centred[corner][1]).toBeLessThan(-0.05);
+  // The partner is the corner mirrored: -x, the same y and z.
+  expect(Math.abs(q[0] + c[0])).toBeLessThan(ROUNDING);
+  expect(Math.abs(q[1] - c[1])).toBeLessThan(ROUNDING);
+  expect(Math.abs(q[2] - c[2])).toBeLessThan(ROUNDING);
+  // The middle stayed on the plane; it moved along it.
+  expect(mid[0]).toBe(0);
+  expect(mid[1] - 1).toBeGreaterThan(0.05);
+  // Everything else where it was; one undo step per drag (after the centring).
+  file.vertices.forEach((p: number[], v: number) => {
+    if (![corner, partner, middle].includes(v)) expect(p).toEqual(centred[v]);
+  });
+  expect((await studio.state()).undo).toBe(3);
+});
+
+test('Mirror copies the selected frame across x = 0, welded at the seam: the saved file has the mirror image', async ({ page, studio }) => {
+  await newTopView(page, studio, 'single', 'mirror-frames.json');
+  const m = await model(studio);
+  await clickPatch(page, 0);
+  // Without a plane chosen, Mirror says what to do and changes nothing.
+  await page.keyboard.press('m');
+  await expect(page.getByTestId('error')).toContainText('choose the symmetry plane');
+  await page.getByTestId('symmetry').selectOption('x');
+  await page.locator('body').click({ position: { x: 5, y: 5 } });
+  await clickPatch(page, 0);
+  await page.keyboard.press('m');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(2);
+  expect((await studio.state()).undo).toBe(1);
+  await page.keyboard.press('Shift+F');
+  await page.waitForTimeout(400);
+  await page.screenshot({ path: shot('designer-mirror.png') });
+  const file = await saved(page, studio, 'mirror-frames.json');
+  // The 3 vertices on x = 0 are shared; the 5 others copied at -x.
+  expect(file.vertices).toHaveLength(8 + 5);
+  expect(file.vertices.slice(0, 8)).toEqual(m.vertices);
+  for (const p of file.vertices.slice(8)) {
+    expect(p[0]).toBeLessThan(0);
+    expect(m.vertices.some((q: number[]) => q[0] === -p[0] && q[1] === p[1] && q[2] === p[2])).toBe(true);
+  }
+  // The two frames share one side: the seam's three vertices.
+  const [a, b] = file.frames.map((f: { vertices: number[] }) => new Set(f.vertices));
+  expect([...a].filter((v) => b.has(v)).sort()).toEqual(m.vertices.flatMap((q: number[], v: number) => (q[0] === 0 ? [v] : [])).sort());
 });

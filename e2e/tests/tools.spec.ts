@@ -189,7 +189,7 @@ test('views: presets by key and button, fit selection, linked cameras; help list
   // ? shows the help with every shortcut; Escape closes it.
   await page.keyboard.press('?');
   await expect(page.getByTestId('help')).toBeVisible();
-  for (const key of ['Ctrl+Z', 'Ctrl+S', 'Escape', 'Delete', 'F', '1', '5', 'K', 'Z', 'C', '?'])
+  for (const key of ['Ctrl+Z', 'Ctrl+S', 'Escape', 'Delete', 'Shift+Delete', 'F', '1', '5', 'K', 'Z', 'C', '?'])
     await expect(page.getByTestId('help-keys').locator('kbd', { hasText: new RegExp(`^${key.replace(/[+?]/g, '\\$&')}$`) })).toHaveCount(1);
   await page.screenshot({ path: shot('help.png') });
   // The user guide's table (docs/studio.md) lists every key the help lists.
@@ -204,15 +204,16 @@ test('views: presets by key and button, fit selection, linked cameras; help list
   await expect(page.getByTestId('vertex-index')).toHaveText('none');
 });
 
-test('Delete removes the selected force (one undo step)', async ({ page, studio }) => {
+test('Shift+Delete removes the selected force (one undo step), not the frame', async ({ page, studio }) => {
   await openStudio(page, studio);
   await page.mouse.click(...(await frameClick(page, 0)));
   await expect(page.getByTestId('force-1')).toBeVisible();
   await page.getByTestId('force-1').click();
   const before = await studio.state();
   await page.locator('body').click({ position: { x: 5, y: 5 } });
-  await page.keyboard.press('Delete');
+  await page.keyboard.press('Shift+Delete');
   await expect.poll(async () => (await studio.state()).model.frames[0].forces.length).toBe(before.model.frames[0].forces.length - 1);
+  expect((await studio.state()).model.frames).toHaveLength(before.model.frames.length);
   expect((await studio.state()).model.frames[0].forces[0]).toEqual(before.model.frames[0].forces[0]);
   expect((await studio.state()).undo).toBe(before.undo + 1);
 });

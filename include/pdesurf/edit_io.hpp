@@ -24,9 +24,11 @@ namespace pdesurf {
 ///   {"op": "add-frame", "corners": [3, 8, 9, 4]}
 ///   {"op": "delete-frames", "frames": [2]}
 ///   {"op": "split-frame", "frame": 0, "parts": 2, "across": "u"}  (or "parts": 4)
+///   {"op": "split-frame", "frames": [0, 4], "parts": 4}  (several frames, one undo step)
 ///   {"op": "weld-vertices", "vertices": [keep, remove]}
 ///   {"op": "weld-edges", "edges": [{"frame": 0, "side": 3}, {"frame": 5, "side": 1}]}
 ///   {"op": "flip-frames", "frames": [1]}
+///   {"op": "mirror-frames", "frames": [0, 1], "axis": "x"}  (copies across the plane x = 0)
 /// A structure edit's indices and shape are checked here; what it would make is checked when
 /// the session applies it (restructure).
 /// Everything the model parser would check of the result is checked (indices in range,

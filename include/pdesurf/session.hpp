@@ -72,13 +72,14 @@ struct AddFrame {
 struct DeleteFrames {
   std::vector<std::uint32_t> frames;
 };
-/// Splits a frame into 2 (across u or v) or 4, with new vertices on the current surface. The
-/// cut runs on through the neighbours across the edges it crosses (a loop cut), so edges
-/// stay shared whole.
+/// Splits frames into 2 (across u or v) or 4 (2 × 2), with new vertices on the current
+/// surface. Each cut runs on through the neighbours across the edges it crosses (a loop cut),
+/// so edges stay shared whole and no vertex is left that no frame uses; frames cut by several
+/// of the given frames' loops are cut once in each direction.
 struct SplitFrame {
-  std::uint32_t frame = 0;
-  bool acrossU = true;   ///< cut at u = 1/2
-  bool acrossV = false;  ///< cut at v = 1/2
+  std::vector<std::uint32_t> frames;  ///< at least one, each once
+  bool acrossU = true;                ///< cut at u = 1/2
+  bool acrossV = false;               ///< cut at v = 1/2
 };
 /// Merges vertex `remove` into `keep` (which moves half way to it).
 struct WeldVertices {
@@ -94,11 +95,21 @@ struct FlipFrames {
   std::vector<std::uint32_t> frames;
 };
 
+/// Copies frames across the plane where coordinate `axis` (0: x, 1: y, 2: z) is 0: each copy's
+/// vertices mirrored, its u reversed (so it faces as its original's neighbours do), its
+/// forces' f0 mirrored. Vertices on the plane (within kMirrorPlaneTolerance of the model's
+/// bounding-box diagonal) are not copied: the copies share them, so the seam is welded.
+struct MirrorFrames {
+  std::vector<std::uint32_t> frames;
+  int axis = 0;
+  static constexpr double kMirrorPlaneTolerance = 1e-6;
+};
+
 /// One change to a model. MoveVertex, SetParameters and the forces keep the frame structure
 /// (the session's topology); the structure edits make a new one.
 using Edit = std::variant<MoveVertex, MoveVertices, SetParameters, SetFrameForces, SetSharedForces,
                           TransformModel, ExtrudeEdges, AddFrame, DeleteFrames, SplitFrame,
-                          WeldVertices, WeldEdges, FlipFrames>;
+                          WeldVertices, WeldEdges, FlipFrames, MirrorFrames>;
 
 /// True for the edits that change which vertices the frames use.
 bool changesStructure(const Edit& edit);

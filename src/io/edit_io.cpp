@@ -81,9 +81,22 @@ std::optional<Edit> parseStructureEdit(const Reader& rd, const Json& doc, const 
   if (name == "flip-frames")
     return FlipFrames{
         indices(rd, rd.member(doc, "$", "frames"), "$.frames", 1, nf, "frame", "frames")};
+  if (name == "mirror-frames") {
+    MirrorFrames e;
+    e.frames = indices(rd, rd.member(doc, "$", "frames"), "$.frames", 1, nf, "frame", "frames");
+    const Json& axis = rd.member(doc, "$", "axis");
+    if (axis != "x" && axis != "y" && axis != "z")
+      rd.fail("$.axis", fmt::format("expected \"x\", \"y\" or \"z\", found {}", axis.dump()));
+    e.axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+    return e;
+  }
   if (name == "split-frame") {
     SplitFrame e;
-    e.frame = rd.index(rd.member(doc, "$", "frame"), "$.frame", nf, "frame", "frames");
+    // One frame ("frame": k) or several ("frames": [k, ...]).
+    if (doc.contains("frames"))
+      e.frames = indices(rd, rd.member(doc, "$", "frames"), "$.frames", 1, nf, "frame", "frames");
+    else
+      e.frames = {rd.index(rd.member(doc, "$", "frame"), "$.frame", nf, "frame", "frames")};
     const Json& parts = rd.member(doc, "$", "parts");
     if (!parts.is_number_integer() ||
         (parts.get<std::int64_t>() != 2 && parts.get<std::int64_t>() != 4))
@@ -180,7 +193,7 @@ GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model) {
             fmt::format("unknown edit \"{}\" (known: move-vertex, move-vertices, "
                         "set-parameters, set-forces, set-shared-forces, extrude, add-frame, "
                         "delete-frames, split-frame, weld-vertices, weld-edges, "
-                        "flip-frames)",
+                        "flip-frames, mirror-frames)",
                         name));
   }
   return out;

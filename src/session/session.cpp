@@ -69,7 +69,8 @@ void ModelSession::apply(const Edit& edit, std::string_view group) {
           static_assert(std::is_same_v<T, TransformModel> || std::is_same_v<T, ExtrudeEdges> ||
                         std::is_same_v<T, AddFrame> || std::is_same_v<T, DeleteFrames> ||
                         std::is_same_v<T, SplitFrame> || std::is_same_v<T, WeldVertices> ||
-                        std::is_same_v<T, WeldEdges> || std::is_same_v<T, FlipFrames>);
+                        std::is_same_v<T, WeldEdges> || std::is_same_v<T, FlipFrames> ||
+                        std::is_same_v<T, MirrorFrames>);
         }
       },
       edit);

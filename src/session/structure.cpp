@@ -361,16 +361,58 @@ VertexFrameModel weldEdges(const VertexFrameModel& model, const FrameTopology& t
   return mergeVertices(model, std::move(into));
 }
 
+/// Frame `f` with its u reversed (P1..P8 mirrored, its force regions with them).
+void flipU(Frame& f) {
+  const auto v = f.vertices;
+  f.vertices = {v[2], v[1], v[0], v[7], v[6], v[5], v[4], v[3]};  // u → 1 - u
+  for (FrameForce& force : f.forces)
+    force.region = {1.0 - force.region.u1, 1.0 - force.region.u0, force.region.v0, force.region.v1};
+}
+
 VertexFrameModel flipFrames(const VertexFrameModel& model, const FlipFrames& e) {
   checkFrameIndices(model, e.frames, "$.frames");
   VertexFrameModel next = model;
+  for (std::uint32_t k : e.frames) flipU(next.frames[k]);
+  return next;
+}
+
+VertexFrameModel mirrorFrames(const VertexFrameModel& model, const MirrorFrames& e) {
+  checkFrameIndices(model, e.frames, "$.frames");
+  if (e.axis < 0 || e.axis > 2) refuse("$.axis", fmt::format("axis {} is not x, y or z", e.axis));
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec3& p : model.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double onPlane = MirrorFrames::kMirrorPlaneTolerance * (hi - lo).norm();
+  const auto mirrored = [&](Vec3 p) {
+    p[e.axis] = -p[e.axis];
+    return p;
+  };
+  VertexFrameModel next = model;
+  std::map<std::uint32_t, std::uint32_t> copy;  // vertex → its mirror image
+  const auto image = [&](std::uint32_t v) {
+    if (std::abs(model.vertices[v][e.axis]) <= onPlane) return v;  // on the seam: shared
+    auto [it, fresh] = copy.try_emplace(v, 0);
+    if (fresh) {
+      next.vertices.push_back(mirrored(model.vertices[v]));
+      it->second = static_cast<std::uint32_t>(next.vertices.size() - 1);
+    }
+    return it->second;
+  };
+  std::map<std::uint32_t, std::uint32_t> copyOf;  // frame → its copy
   for (std::uint32_t k : e.frames) {
-    Frame& f = next.frames[k];
-    const auto v = f.vertices;
-    f.vertices = {v[2], v[1], v[0], v[7], v[6], v[5], v[4], v[3]};  // u → 1 - u
-    for (FrameForce& force : f.forces)
-      force.region = {1.0 - force.region.u1, 1.0 - force.region.u0, force.region.v0,
-                      force.region.v1};
+    Frame f = model.frames[k];
+    for (std::uint32_t& v : f.vertices) v = image(v);
+    for (FrameForce& force : f.forces) force.f0 = mirrored(force.f0);
+    flipU(f);  // a mirror image faces the other way: reversing u turns it back
+    copyOf[k] = static_cast<std::uint32_t>(next.frames.size());
+    next.frames.push_back(std::move(f));
+  }
+  // A shared force over mirrored frames: its mirror image over their copies.
+  for (const SharedForce& force : model.forces) {
+    SharedForce twin;
+    twin.f0 = mirrored(force.f0);
+    for (std::uint32_t k : force.frames)
+      if (const auto it = copyOf.find(k); it != copyOf.end()) twin.frames.push_back(it->second);
+    if (!twin.frames.empty()) next.forces.push_back(std::move(twin));
   }
   return next;
 }
@@ -380,9 +422,7 @@ VertexFrameModel flipFrames(const VertexFrameModel& model, const FlipFrames& e) 
 
 VertexFrameModel split(const VertexFrameModel& model, const FrameTopology& topology,
                        const VertexFrameSurface& surface, const SplitFrame& e) {
-  if (e.frame >= model.frames.size())
-    refuse("$.frame", fmt::format("frame {} is out of range (the model has {} frames)", e.frame,
-                                  model.frames.size()));
+  checkFrameIndices(model, e.frames, "$.frames");
   if (!e.acrossU && !e.acrossV) refuse("$.parts", "a split cuts across u, v or both");
   // cut[k][d]: frame k is cut at the middle of direction d (0: u, 1: v). A u cut crosses the
   // sides Alpha and Beta, which it halves; a neighbour on a halved edge is cut across it too.
@@ -392,8 +432,10 @@ VertexFrameModel split(const VertexFrameModel& model, const FrameTopology& topol
   const auto mark = [&](std::uint32_t k, int d) {
     if (!cut[k][d]) cut[k][d] = 1, todo.push_back({k, d});
   };
-  if (e.acrossU) mark(e.frame, 0);
-  if (e.acrossV) mark(e.frame, 1);
+  for (std::uint32_t k : e.frames) {
+    if (e.acrossU) mark(k, 0);
+    if (e.acrossV) mark(k, 1);
+  }
   while (!todo.empty()) {
     const auto [k, d] = todo.back();
     todo.pop_back();
@@ -515,7 +557,7 @@ bool changesStructure(const Edit& edit) {
   return std::holds_alternative<ExtrudeEdges>(edit) || std::holds_alternative<AddFrame>(edit) ||
          std::holds_alternative<DeleteFrames>(edit) || std::holds_alternative<SplitFrame>(edit) ||
          std::holds_alternative<WeldVertices>(edit) || std::holds_alternative<WeldEdges>(edit) ||
-         std::holds_alternative<FlipFrames>(edit);
+         std::holds_alternative<FlipFrames>(edit) || std::holds_alternative<MirrorFrames>(edit);
 }
 
 VertexFrameModel restructure(const VertexFrameModel& model, const FrameTopology& topology,
@@ -530,6 +572,7 @@ VertexFrameModel restructure(const VertexFrameModel& model, const FrameTopology&
         if constexpr (std::is_same_v<T, WeldVertices>) return weldVertices(model, e);
         if constexpr (std::is_same_v<T, WeldEdges>) return weldEdges(model, topology, e);
         if constexpr (std::is_same_v<T, FlipFrames>) return flipFrames(model, e);
+        if constexpr (std::is_same_v<T, MirrorFrames>) return mirrorFrames(model, e);
         throw std::logic_error("restructure: not a structure edit");
       },
       edit);

@@ -258,6 +258,49 @@ TEST(Structure, SplitAddsNoVertexThatNoFrameUses) {
   EXPECT_EQ(unusedVertices(*grid.frames()), 0u);
 }
 
+TEST(Structure, SplitSeveralFramesAtOnceKeepsEdgesSharedInOneUndoStep) {
+  // Frames 0 (a corner) and 4 (the centre) of a 3 × 3 grid, each into 2 × 2: their loop cuts
+  // run through columns 0 and 1 and rows 0 and 1. Frame (a, b) becomes (a < 2 ? 2 : 1) ×
+  // (b < 2 ? 2 : 1) frames: 4 × 4 + 2 × 2 + 2 × 2 + 1 = 25.
+  const VertexFrameModel before = curvedGrid();
+  ModelSession s{AnyModel(before)};
+  const std::string file = serializeModel(s.model());
+  const VertexFrameSurface old = solve(before);
+  applyJson(s, R"({"op":"split-frame","frames":[0,4],"parts":4})");
+  const VertexFrameModel& m = *s.frames();
+  EXPECT_EQ(m.frames.size(), 25u);
+  // The lattice of a 5 × 5 grid of frames (11 × 11 points) less the 25 frame centres.
+  EXPECT_EQ(m.vertices.size(), 11u * 11u - 25u);
+  EXPECT_EQ(unusedVertices(m), 0u);
+  // Only the outer boundary is a boundary: every inner edge is shared by two frames.
+  EXPECT_EQ(boundaryEdges(m), 4u * 5u);
+  EXPECT_LT(relativeGap(m), kC0RelativeTolerance);
+  EXPECT_TRUE(facesOneWay(m));
+  // The edit is one undo step, back to the file byte for byte.
+  EXPECT_EQ(s.undoDepth(), 1u);
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(serializeModel(s.model()), file);
+
+  // Subdivide all: every frame into 2 × 2, the shape kept (new vertices on the old surface).
+  applyJson(s, R"({"op":"split-frame","frames":[0,1,2,3,4,5,6,7,8],"parts":4})");
+  const VertexFrameModel& all = *s.frames();
+  EXPECT_EQ(all.frames.size(), 36u);
+  EXPECT_EQ(all.vertices.size(), 13u * 13u - 36u);
+  EXPECT_EQ(unusedVertices(all), 0u);
+  EXPECT_LT(relativeGap(all), kC0RelativeTolerance);
+  for (std::size_t v = before.vertices.size(); v < all.vertices.size(); ++v) {
+    double nearest = 1e300;
+    for (int j = 0; j <= 4; ++j)
+      for (int i = 0; i <= 4; ++i)
+        for (const VertexFramePatch& p : old.patches)
+          nearest = std::min(nearest, (p.position(i / 4.0, j / 4.0) - all.vertices[v]).norm());
+    // A new vertex is computed from one patch's closed form: exact to rounding.
+    EXPECT_LT(nearest, kC0RelativeTolerance) << "vertex " << v;
+  }
+  EXPECT_TRUE(
+      contains(refusal(s, R"({"op":"split-frame","frames":[1,1],"parts":4})"), "listed twice"));
+}
+
 TEST(Structure, SplitInTwoOnATubeRunsAlongItAndKeepsForcesInsideAPart) {
   VertexFrameModel tube = newModel(NewModelOptions::Kind::Tube, 4, 3);
   tube.frames[0].forces = {{Vec3(0, 0, 1), {0.1, 0.4, 0.2, 0.9}}};
@@ -276,6 +319,46 @@ TEST(Structure, SplitInTwoOnATubeRunsAlongItAndKeepsForcesInsideAPart) {
   ModelSession t{AnyModel(std::move(across))};
   EXPECT_TRUE(contains(refusal(t, R"({"op":"split-frame","frame":0,"parts":2,"across":"u"})"),
                        "through this force's region"));
+}
+
+TEST(Structure, MirrorFramesCopiesAcrossThePlaneAndWeldsTheSeam) {
+  // One frame on x in [0, 1] with a force; mirrored across x = 0, the copy shares the three
+  // vertices on the plane (P1, P8, P7), and the surface is the mirror image of the original.
+  VertexFrameModel one = newModel(NewModelOptions::Kind::Single, 1, 1);
+  for (Vec3& p : one.vertices) p.z() = 0.2 * p.x() * p.y();  // not flat, not symmetric in u
+  one.frames[0].forces = {{Vec3(1, 0, 2), {0.1, 0.4, 0.2, 0.7}}};
+  ModelSession s{AnyModel(one)};
+  const std::string file = serializeModel(s.model());
+  applyJson(s, R"({"op":"mirror-frames","frames":[0],"axis":"x"})");
+  const VertexFrameModel& m = *s.frames();
+  ASSERT_EQ(m.frames.size(), 2u);
+  EXPECT_EQ(m.vertices.size(), 8u + 5u);
+  EXPECT_EQ(sharedEdges(m), 1u);
+  EXPECT_EQ(boundaryEdges(m), 6u);
+  EXPECT_TRUE(facesOneWay(m));
+  EXPECT_LT(relativeGap(m), kC0RelativeTolerance);
+  const FrameForce& f = m.frames[1].forces.at(0);  // f0 mirrored, u reversed
+  EXPECT_EQ(f.f0, Vec3(-1, 0, 2));
+  EXPECT_DOUBLE_EQ(f.region.u0, 0.6);
+  EXPECT_DOUBLE_EQ(f.region.u1, 0.9);
+  const VertexFrameSurface surface = solve(m);
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) {
+      Vec3 p = surface.patches[0].position(i / 4.0, j / 4.0);
+      p.x() = -p.x();
+      const Vec3 q = surface.patches[1].position(1.0 - i / 4.0, j / 4.0);
+      // The copy's closed form is the original's with x negated: equal to rounding.
+      EXPECT_LT((p - q).norm(), kC0RelativeTolerance) << i << ", " << j;
+    }
+  EXPECT_EQ(s.undoDepth(), 1u);
+  ASSERT_TRUE(s.undo());
+  EXPECT_EQ(serializeModel(s.model()), file);
+  // Mirrored onto a copy already there, the seam would join three frames: refused.
+  applyJson(s, R"({"op":"mirror-frames","frames":[0],"axis":"x"})");
+  EXPECT_TRUE(
+      contains(refusal(s, R"({"op":"mirror-frames","frames":[0],"axis":"x"})"), "3 frames"));
+  EXPECT_TRUE(
+      contains(refusal(s, R"({"op":"mirror-frames","frames":[0],"axis":"w"})"), "expected \"x\""));
 }
 
 TEST(Structure, WeldEdgesClosesAStripIntoATube) {

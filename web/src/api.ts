@@ -85,8 +85,9 @@ export type Edit =
   | { op: 'add-frame'; corners: number[] }
   | { op: 'delete-frames'; frames: number[] }
   | { op: 'flip-frames'; frames: number[] }
-  | { op: 'split-frame'; frame: number; parts: 4 }
-  | { op: 'split-frame'; frame: number; parts: 2; across: 'u' | 'v' }
+  | { op: 'mirror-frames'; frames: number[]; axis: 'x' | 'y' | 'z' }
+  | { op: 'split-frame'; frames: number[]; parts: 4 }
+  | { op: 'split-frame'; frames: number[]; parts: 2; across: 'u' | 'v' }
   | { op: 'weld-vertices'; vertices: [number, number] }
   | { op: 'weld-edges'; edges: { frame: number; side: number }[] }
   // The shape edits of the other model types (shape.ts: ShapeEdit).

@@ -53,10 +53,10 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
         s.selectedForce = 0;
       });
     } },
-    { keys: 'Delete', what: "Remove the selected frame's selected force", matches: (e) => e.key === 'Delete' || e.key === 'Backspace', run: () => {
+    { keys: 'Shift+Delete', what: "Remove the selected frame's selected force", matches: (e) => e.shiftKey && (e.key === 'Delete' || e.key === 'Backspace'), run: () => {
       const remove = document.querySelector<HTMLButtonElement>('.force.selected [data-testid$="-remove"]');
       if (remove) remove.click();
-      else studio.say('Delete: select a frame and one of its forces first');
+      else studio.say('Shift+Delete: select a frame and one of its forces first');
     } },
     { keys: 'F', what: 'Fit the selection (all when nothing is selected)', matches: (e) => plain('f')(e) && !e.shiftKey, run: () => views.fitSelection() },
     { keys: 'Shift+F, Home', what: 'Fit all', matches: (e) => (plain('f')(e) && e.shiftKey) || e.key === 'Home', run: () => views.fitAll() },
@@ -84,10 +84,11 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
       { keys: 'N', what: 'New model (one frame, a grid or a tube)', matches: plain('n'), run: () => modeller.newModel() },
       { keys: 'E', what: 'Extrude the selected boundary edges (both corners selected)', matches: plain('e'), run: () => modeller.extrude() },
       { keys: 'A', what: 'Add a frame on the 4 selected corners (picked in turn)', matches: plain('a'), run: () => modeller.addFrame() },
-      { keys: 'X', what: 'Delete the selected frames', matches: plain('x'), run: () => modeller.deleteFrames() },
-      { keys: 'S', what: 'Split the selected frame in 4', matches: (e) => plain('s')(e) && !e.shiftKey, run: () => modeller.split('4') },
+      { keys: 'Delete, X', what: 'Delete the selected frames (one undo step)', matches: (e) => (e.key === 'Delete' || e.key === 'Backspace' || plain('x')(e)) && !e.shiftKey, run: () => modeller.deleteFrames() },
+      { keys: 'S', what: 'Split the selected frames (Ctrl+A: all) into 2 × 2; the cuts run on through the neighbours', matches: (e) => plain('s')(e) && !e.shiftKey, run: () => modeller.split('4') },
       { keys: 'W', what: 'Weld 2 selected vertices, or 2 selected boundary edges', matches: plain('w'), run: () => modeller.weld() },
       { keys: 'R', what: "Flip the selected frames' u direction", matches: (e) => plain('r')(e) && !e.shiftKey, run: () => modeller.flip() },
+      { keys: 'M', what: "Mirror: copy the selected frames across the panel's symmetry plane, welded at the seam", matches: plain('m'), run: () => modeller.mirror() },
       { keys: 'G', what: "Move gizmo on the selection, or on the chosen curve's centre (on/off)", matches: plain('g'), run: () => modeller.toggleGizmo() },
       { keys: 'Shift+S', what: "Scale the selection, or the chosen curve, about its centre (the panel's factor)", matches: (e) => plain('s')(e) && e.shiftKey, run: () => (shapeModel() ? click('curve-scale')() : modeller.scaleSelection()) },
       { keys: 'Shift+R', what: "Rotate the selection, or the chosen curve, about its centre (the panel's axis and degrees)", matches: (e) => plain('r')(e) && e.shiftKey, run: () => (shapeModel() ? click('curve-rotate')() : modeller.rotateSelection()) },

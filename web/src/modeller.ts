@@ -15,7 +15,7 @@ import type { Gizmo } from './gizmo';
 import { modelBox } from './viewport';
 import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
 import type { Studio } from './studio';
-import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
+import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
 import type { DragTool } from './drag';
@@ -37,6 +37,8 @@ export interface ModellerActions {
   split(parts: '4' | 'u' | 'v'): void;
   weld(): void;
   flip(): void;
+  /** Copies the selected frames across the panel's symmetry plane. */
+  mirror(): void;
   toggleGizmo(): void;
   scaleSelection(): void;
   rotateSelection(): void;
@@ -76,6 +78,7 @@ export function mountModeller(
     split: (parts) => send(() => splitEdit(store.state.selectedFrames, parts)),
     weld: () => send(() => weldEdit(store.state.model!, store.state.selectedVertices)),
     flip: () => send(() => framesEdit('flip-frames', store.state.selectedFrames)),
+    mirror: () => send(() => mirrorEdit(store.state.selectedFrames, $<HTMLSelectElement>('symmetry').value)),
     // Set below, with the tools they drive.
     toggleGizmo: () => {},
     scaleSelection: () => {},
@@ -107,6 +110,7 @@ export function mountModeller(
   $('split-v').addEventListener('click', () => actions.split('v'));
   $('weld').addEventListener('click', actions.weld);
   $('flip').addEventListener('click', actions.flip);
+  $('mirror-frames').addEventListener('click', actions.mirror);
   store.subscribe(['model'], (state) => {
     for (const button of $('model-tools').querySelectorAll<HTMLButtonElement>('button:not([data-testid="new-model"])'))
       button.disabled = !state.model;

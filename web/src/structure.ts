@@ -77,10 +77,19 @@ export function framesEdit(op: 'delete-frames' | 'flip-frames', frames: Readonly
   return { edit: { op, frames: [...frames].sort((a, b) => a - b) } };
 }
 
-export function splitEdit(frames: ReadonlySet<number>, parts: '4' | 'u' | 'v'): Made {
-  if (frames.size !== 1) return { problem: `Split: select one frame (${frames.size} selected)` };
-  const [frame] = frames;
-  return { edit: parts === '4' ? { op: 'split-frame', frame, parts: 4 } : { op: 'split-frame', frame, parts: 2, across: parts } };
+/** Copies the selected frames across the plane `axis` = 0 (the panel's symmetry plane). */
+export function mirrorEdit(selected: ReadonlySet<number>, axis: string): Made {
+  if (axis !== 'x' && axis !== 'y' && axis !== 'z') return { problem: 'Mirror: choose the symmetry plane in the panel first' };
+  if (!selected.size) return { problem: 'Mirror: select frames first' };
+  return { edit: { op: 'mirror-frames', frames: [...selected].sort((a, b) => a - b), axis } };
+}
+
+/** Splits the selected frames (all of them at once: one undo step); each cut runs on through
+ * the neighbours across the edges it crosses, so the model stays one without gaps. */
+export function splitEdit(selected: ReadonlySet<number>, parts: '4' | 'u' | 'v'): Made {
+  if (!selected.size) return { problem: 'Split: select frames first (Ctrl+A: all)' };
+  const frames = [...selected].sort((a, b) => a - b);
+  return { edit: parts === '4' ? { op: 'split-frame', frames, parts: 4 } : { op: 'split-frame', frames, parts: 2, across: parts } };
 }
 
 /** A click's selection change on a handle that may stand on others (coincident vertices, a
