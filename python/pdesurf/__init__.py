@@ -163,9 +163,24 @@ def _pair(value, name, what):
     return first, second
 
 
+def _fraction(value, name):
+    """A fraction given as a number or a string ('0.002' or '0.2%')."""
+    text = str(value).strip()
+    scale = 100.0 if text.endswith("%") else 1.0
+    try:
+        x = float(text[:-1] if scale == 100.0 else text) / scale
+    except ValueError:
+        raise ValueError(f"{name}: expected a fraction (0.002) or a percentage ('0.2%'), "
+                         f"got {value!r}") from None
+    if not 0.0 < x < 1.0:
+        raise ValueError(f"{name}: must be in (0, 1) of the diagonal, got {value!r}")
+    return x
+
+
 def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=None, tube=None,
             iterations=30, tolerance=1e-3, smoothness=1e-5, fit_samples=9, prevent_folds=False,
-            fold_weight=1e-5, fit_shape=False, resolution=17, samples=100000, axis="z", count=25, range=None,
+            fold_weight=1e-5, fit_shape=False, frames=None, target_rms=None, quads=None,
+            crease_angle=None, resolution=17, samples=100000, axis="z", count=25, range=None,
             near=None, track=False, modes=8, points=128, a=1.0, ends="natural", exact=False,
             name=None, progress=None):
     """Rebuilds a mesh as a model, as `pdesurf rebuild` does -> (model, report).
@@ -173,7 +188,10 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     The mesh: (vertices, triangles) arrays, a Mesh, or a mesh file's path (then triangles is
     None). kind="vertex-frames" fits a layout of frames, one of grid=(U, V) (a grid on a
     disk-like mesh), layout=QUADS_FILE (one frame per quad) or tube=(RINGS, SECTORS) (the
-    part chosen by axis, range, near, track), with iterations, tolerance, smoothness,
+    part chosen by axis, range, near, track), or, with none of them, the automatic layout of
+    any mesh: about `frames` frames (default 200), or the smallest whose fitted model reaches
+    target_rms both ways (a fraction of the diagonal, 0.002, or a string '0.2%'), shaped by
+    quads ('pair' or 'split') and crease_angle (degrees, default 60); with iterations, tolerance, smoothness,
     fit_samples, prevent_folds, fold_weight (--fold-weight), fit_shape as the CLI's options; progress(iteration), if
     given, is called after each iteration. kind="cross-sections" slices the mesh (axis, count,
     range, near, track), fits each section by `modes` Fourier modes over `points` points and
@@ -182,7 +200,8 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     report: "rms" (model -> mesh, mesh -> model), "mean", "max": relative to the mesh's (or
     the part's) bounding-box diagonal; "distances" (as compare's), "storage_bytes" (the
     seed's Table 1 convention); vertex frames also "iterations", "stop_reason"; cross sections
-    and tubes "part" (the mesh part measured against), cross sections "sections".
+    and tubes "part" (the mesh part measured against), cross sections "sections"; the automatic
+    layout "mesh_storage_bytes", and with target_rms "target_reached" and "trials".
     The GIL is released while fitting and measuring.
     """
     mesh, source = _as_mesh(vertices, triangles, name="vertices")
@@ -197,9 +216,18 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
                   "part_storage_bytes": _core.storage_bytes(part)}
         measured, reference = surface, part
     elif kind == "vertex-frames":
-        if sum(x is not None for x in (grid, layout, tube)) != 1:
-            raise ValueError("kind='vertex-frames': give one of grid=(U, V), layout=QUADS_FILE "
-                             "and tube=(RINGS, SECTORS)")
+        layouts = sum(x is not None for x in (grid, layout, tube))
+        automatic_options = (frames, target_rms, quads, crease_angle)
+        if layouts > 1:
+            raise ValueError("kind='vertex-frames': give at most one of grid=(U, V), "
+                             "layout=QUADS_FILE and tube=(RINGS, SECTORS)")
+        if layouts == 1 and any(x is not None for x in automatic_options):
+            raise ValueError("frames, target_rms, quads and crease_angle shape the automatic "
+                             "layout: not with grid, layout or tube")
+        if frames is not None and target_rms is not None:
+            raise ValueError("frames: frames and target_rms both choose the number of frames: "
+                             "give one of them")
+        target = _fraction(target_rms, "target_rms") if target_rms is not None else None
         if fit_shape and iterations == 0:
             raise ValueError("fit_shape with iterations=0 would fit nothing")
         # The fit's options before the layout's work (_core.fit checks them too).
@@ -208,19 +236,32 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
         if resolution < 2 or resolution > 4097:
             raise ValueError(f"resolution: must be 2 to 4097, got {resolution}")
         report = {}
-        if layout is not None:
+        stem = _pathlib.PurePath(source).stem if source[0] != "<" else "mesh"
+        model_name = name or f"{stem} (vertex frames)"
+        auto = (frames or 200, 60.0 if crease_angle is None else crease_angle, quads or "pair")
+        if layouts == 0 and target is not None:
+            model, its, stop, reached, trials = _core.search_target_rms(
+                mesh, target, *auto, iterations, tolerance, smoothness, fit_samples,
+                prevent_folds, fold_weight, fit_shape, resolution, model_name, source)
+            report.update(target_reached=reached, trials=trials)
+        elif layout is not None:
             start = _core.quad_layout(_os.fspath(layout))
         elif grid is not None:
             start = _core.grid_layout(mesh, *_pair(grid, "grid", "(U, V)"), source)
+        elif layouts == 0:
+            start = _core.auto_layout(mesh, *auto, source)
         else:
             rings, sectors = _pair(tube, "tube", "(RINGS, SECTORS)")
             start, mesh = _core.tube_layout(mesh, rings, sectors, axis, range, near, track,
                                             source)
             report["part"] = mesh
-        stem = _pathlib.PurePath(source).stem if source[0] != "<" else "mesh"
-        start = _core.with_name(start, name or f"{stem} (vertex frames)")
-        model, its, stop = _core.fit(start, mesh, iterations, tolerance, smoothness, fit_samples,
-                                     prevent_folds, fold_weight, fit_shape, progress)
+        if layouts > 0 or target is None:
+            start = _core.with_name(start, model_name)
+            model, its, stop = _core.fit(start, mesh, iterations, tolerance, smoothness,
+                                         fit_samples, prevent_folds, fold_weight, fit_shape,
+                                         progress)
+        if layouts == 0:
+            report["mesh_storage_bytes"] = _core.storage_bytes(mesh)
         report.update(iterations=its, stop_reason=stop, storage_bytes=_core.storage_bytes(model))
         measured, reference = model.solve().tessellate(resolution), mesh
     else:

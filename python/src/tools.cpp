@@ -18,6 +18,7 @@
 
 #include "core.hpp"
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/auto_layout.hpp"
 #include "pdesurf/cad_export.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_slice.hpp"
@@ -121,10 +122,9 @@ py::dict iterationDict(const FitIteration& it) {
                   arg("measure") = measureDict(it.measure));
 }
 
-py::tuple fit(const Model& start, const Mesh& mesh, std::uint32_t iterations, double tolerance,
-              double smoothness, std::uint32_t samples, bool preventFolds, double foldWeight,
-              bool fitShape, const py::object& progress) {
-  const VertexFrameModel& layout = framesOf(start, "start");
+/// The fit's options from the CLI's (checked as the CLI checks them).
+FitOptions fitOptions(std::uint32_t iterations, double tolerance, double smoothness,
+                      std::uint32_t samples, bool preventFolds, double foldWeight, bool fitShape) {
   if (samples == 1 || samples == 2 || samples > 65)
     badArgument("fit_samples", "must be 0 (automatic) or 3 to 65");
   if (!(tolerance >= 0.0 && tolerance <= 1.0)) badArgument("tolerance", "must be in [0, 1]");
@@ -138,6 +138,37 @@ py::tuple fit(const Model& start, const Mesh& mesh, std::uint32_t iterations, do
   options.preventFolds = preventFolds;
   options.conformalWeight = foldWeight;
   options.fitShape = fitShape;
+  return options;
+}
+
+/// The automatic layout's options (`rebuild --frames --quads --crease-angle`).
+AutoLayoutOptions autoLayoutOptions(std::uint32_t frames, double creaseAngle,
+                                    const std::string& quads) {
+  if (frames < 1 || frames > 1000000) badArgument("frames", "must be 1 to 1000000");
+  if (!(creaseAngle >= 0.0 && creaseAngle <= 180.0))
+    badArgument("crease_angle", "must be in [0, 180] degrees");
+  if (quads != "pair" && quads != "split")
+    badArgument("quads", "'" + quads + "' is neither 'pair' nor 'split'");
+  AutoLayoutOptions options;
+  options.frames = frames;
+  options.creaseAngle = creaseAngle;
+  options.construction =
+      quads == "split" ? QuadConstruction::SplitTriangles : QuadConstruction::PairTriangles;
+  return options;
+}
+
+py::list iterationList(const std::vector<FitIteration>& iterations) {
+  py::list its;
+  for (const FitIteration& it : iterations) its.append(iterationDict(it));
+  return its;
+}
+
+py::tuple fit(const Model& start, const Mesh& mesh, std::uint32_t iterations, double tolerance,
+              double smoothness, std::uint32_t samples, bool preventFolds, double foldWeight,
+              bool fitShape, const py::object& progress) {
+  const VertexFrameModel& layout = framesOf(start, "start");
+  FitOptions options =
+      fitOptions(iterations, tolerance, smoothness, samples, preventFolds, foldWeight, fitShape);
   if (!progress.is_none())
     options.onIteration = [&](const FitIteration& it) {
       py::gil_scoped_acquire gil;
@@ -148,9 +179,34 @@ py::tuple fit(const Model& start, const Mesh& mesh, std::uint32_t iterations, do
     py::gil_scoped_release release;
     result = fitVertexFrames(layout, mesh, options);
   }
-  py::list its;
-  for (const FitIteration& it : result.iterations) its.append(iterationDict(it));
-  return py::make_tuple(frameModel(std::move(result.model), start.source), its, result.stopReason);
+  return py::make_tuple(frameModel(std::move(result.model), start.source),
+                        iterationList(result.iterations), result.stopReason);
+}
+
+/// `rebuild --target-rms`: the smallest automatic layout whose fit reaches the target both
+/// ways -> (model, iterations, stop_reason, reached, trials).
+py::tuple searchTarget(const Mesh& mesh, double target, std::uint32_t frames, double creaseAngle,
+                       const std::string& quads, std::uint32_t iterations, double tolerance,
+                       double smoothness, std::uint32_t samples, bool preventFolds,
+                       double foldWeight, bool fitShape, std::uint32_t resolution,
+                       const std::string& name, const std::string& source) {
+  if (!(target > 0.0 && target < 1.0))
+    badArgument("target_rms", "must be a fraction of the diagonal in (0, 1), or '0.2%'");
+  TargetSearchOptions o;
+  o.targetRms = target;
+  o.layout = autoLayoutOptions(frames, creaseAngle, quads);
+  o.fit =
+      fitOptions(iterations, tolerance, smoothness, samples, preventFolds, foldWeight, fitShape);
+  o.resolution = resolution;
+  TargetSearch s;
+  {
+    py::gil_scoped_release release;
+    s = searchTargetRms(mesh, o, source);
+  }
+  s.best.fit.model.name = name;
+  return py::make_tuple(frameModel(std::move(s.best.fit.model), source),
+                        iterationList(s.best.fit.iterations), s.best.fit.stopReason, s.reached,
+                        s.trials);
 }
 
 py::tuple rebuildSections(const Mesh& mesh, const SliceOptions& slice, std::uint32_t modes,
@@ -279,11 +335,28 @@ void bindTools(py::module_& m) {
       py::arg("mesh"), py::arg("rings"), py::arg("sectors"), py::arg("axis"), py::arg("range"),
       py::arg("near"), py::arg("track"), py::arg("source"),
       "A tube of frames on a part of the mesh -> (layout, part). Raises LayoutError.");
+  m.def(
+      "auto_layout",
+      [](const Mesh& mesh, std::uint32_t frames, double creaseAngle, const std::string& quads,
+         const std::string& source) {
+        const AutoLayoutOptions options = autoLayoutOptions(frames, creaseAngle, quads);
+        py::gil_scoped_release release;
+        return frameModel(autoLayout(mesh, options, source).model, source);
+      },
+      py::arg("mesh"), py::arg("frames"), py::arg("crease_angle"), py::arg("quads"),
+      py::arg("source"),
+      "The automatic layout of about `frames` frames on any mesh. Raises LayoutError.");
+  m.def("search_target_rms", &searchTarget, py::arg("mesh"), py::arg("target"), py::arg("frames"),
+        py::arg("crease_angle"), py::arg("quads"), py::arg("iterations"), py::arg("tolerance"),
+        py::arg("smoothness"), py::arg("fit_samples"), py::arg("prevent_folds"),
+        py::arg("fold_weight"), py::arg("fit_shape"), py::arg("resolution"), py::arg("name"),
+        py::arg("source"),
+        "The smallest automatic layout whose fitted model reaches `target` both ways ->\n"
+        "(model, iterations, stop_reason, reached, trials). The GIL is released meanwhile.");
   m.def("fit", &fit, py::arg("start"), py::arg("mesh"), py::arg("iterations") = 30,
         py::arg("tolerance") = 1e-3, py::arg("smoothness") = 1e-5, py::arg("fit_samples") = 9,
         py::arg("prevent_folds") = false, py::arg("fold_weight") = FitOptions{}.conformalWeight,
-        py::arg("fit_shape") = false,
-        py::arg("progress") = py::none(),
+        py::arg("fit_shape") = false, py::arg("progress") = py::none(),
         "Fits a layout's vertices (and with fit_shape its forces, a1, a2) to a mesh ->\n"
         "(model, iterations, stop_reason); progress(iteration) is called after each. The GIL\n"
         "is released meanwhile (taken again for progress).");

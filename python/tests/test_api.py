@@ -231,6 +231,26 @@ def test_rebuild_fold_weight_is_the_cli_option(cgal_mesh, tmp_path):
         pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, fold_weight=-1)
 
 
+@pytest.mark.parametrize("choice", [["--frames", 40], ["--target-rms", "0.5%"]])
+def test_rebuild_automatic_layout_is_the_cli_rebuild(choice, cgal_mesh, tmp_path):
+    # No layout given: the automatic layout, of about `frames` frames or the smallest reaching
+    # the target RMS both ways, gives the model and the numbers `pdesurf rebuild` gives.
+    mesh = cgal_mesh("sphere.off")
+    out = tmp_path / "auto.json"
+    printed = cli("rebuild", mesh, "--as", "vertex-frames", *choice, "--iterations", 4,
+                  "-o", out)
+    keywords = {"frames": choice[1]} if choice[0] == "--frames" else {"target_rms": choice[1]}
+    model, report = pdesurf.rebuild(mesh, iterations=4, **keywords)
+    assert model.to_json() == out.read_text()
+    assert f"storage        {report['storage_bytes']} bytes" in printed
+    assert f"mesh storage   {report['mesh_storage_bytes']} bytes" in printed
+    assert f"{out}: {report['stop_reason']}" in printed
+    if choice[0] == "--target-rms":
+        assert report["target_reached"] and "reached both ways" in printed
+        assert max(report["rms"]) <= 0.005
+        assert f"({report['trials']} layout" in printed
+
+
 def test_more_frames_fit_closer(cgal_mesh):
     peaks = pdesurf.read_mesh(cgal_mesh("three_peaks.off"))
     coarse = pdesurf.rebuild(peaks.vertices, peaks.triangles, grid=(2, 2), iterations=4)[1]
