@@ -39,12 +39,14 @@ describe('structure edits from the selection', () => {
     expect(weldEdit(m, [0, 1, 2])).toHaveProperty('problem', expect.stringContaining('3 vertices'));
   });
 
-  it('needs 4 corners for a frame, one frame to split, some frames to delete or flip', () => {
+  it('needs 4 corners for a frame, some frames to split, delete or flip', () => {
     expect(addFrameEdit([1, 2, 3, 4])).toEqual({ edit: { op: 'add-frame', corners: [1, 2, 3, 4] } });
     expect(addFrameEdit([1, 2, 3])).toHaveProperty('problem', expect.stringContaining('(3 selected)'));
-    expect(splitEdit(new Set([1]), 'u')).toEqual({ edit: { op: 'split-frame', frame: 1, parts: 2, across: 'u' } });
-    expect(splitEdit(new Set([1]), '4')).toEqual({ edit: { op: 'split-frame', frame: 1, parts: 4 } });
-    expect(splitEdit(new Set([0, 1]), '4')).toHaveProperty('problem', expect.stringContaining('(2 selected)'));
+    expect(splitEdit(new Set([1]), 'u')).toEqual({ edit: { op: 'split-frame', frames: [1], parts: 2, across: 'u' } });
+    expect(splitEdit(new Set([1]), '4')).toEqual({ edit: { op: 'split-frame', frames: [1], parts: 4 } });
+    // Several frames split in one edit, listed in order whatever the pick order.
+    expect(splitEdit(new Set([3, 0]), '4')).toEqual({ edit: { op: 'split-frame', frames: [0, 3], parts: 4 } });
+    expect(splitEdit(new Set(), 'v')).toHaveProperty('problem', expect.stringContaining('select frames first'));
     expect(framesEdit('delete-frames', new Set([2, 0]))).toEqual({ edit: { op: 'delete-frames', frames: [0, 2] } });
     expect(framesEdit('flip-frames', new Set())).toHaveProperty('problem', 'Flip: select frames first');
   });
