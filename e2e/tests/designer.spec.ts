@@ -377,6 +377,11 @@ test('Split 4 on several frames, then on all: shared edges stay shared, no verte
   onLattice(file, 0.25);
   await page.keyboard.press('Control+z');
   await expect.poll(async () => (await model(studio)).frames.length).toBe(3);
+  // The page holds the undone model before Ctrl+A selects its frames (else Ctrl+A selects the
+  // 10 frames of the split model, and the undo's reload then clears that selection).
+  await settle(page);
+  const undone = (await studio.state()).revision;
+  await expect.poll(async () => (await hook<{ revision: number }>(page, 'state')).revision).toBe(undone);
 
   // Ctrl+A, S: every frame into 2 × 2, a 6 × 2 grid of frames (13 × 5 points less 12 centres).
   await page.keyboard.press('Control+a');
