@@ -25,6 +25,7 @@ from ._core import Mesh, Model, Session, Surface, get_threads, read_mesh, set_th
 
 __all__ = [
     "load", "parse", "vertex_frames", "read_mesh", "compare", "slice", "rebuild", "export",
+    "polygon_peer",
     "set_threads", "get_threads", "release_mesh_memory", "Model", "Surface", "Mesh",
     "Session", "Error", "ModelError", "FileError", "MeshIOError", "LayoutError", "SliceError",
     "SectionError", "CadError", "ToleranceError",
@@ -177,6 +178,33 @@ def _fraction(value, name):
     return x
 
 
+def _vertex_frame_options(grid, layout, tube, frames, target_rms, quads, crease_angle,
+                          iterations, fit_samples, fit_shape, resolution):
+    """rebuild's vertex-frame options checked before any work (pdesurf.batch checks a
+    collection's options with it before starting) -> (layouts given, target_rms as a
+    fraction or None). Raises ValueError naming the option."""
+    layouts = sum(x is not None for x in (grid, layout, tube))
+    automatic_options = (frames, target_rms, quads, crease_angle)
+    if layouts > 1:
+        raise ValueError("kind='vertex-frames': give at most one of grid=(U, V), "
+                         "layout=QUADS_FILE and tube=(RINGS, SECTORS)")
+    if layouts == 1 and any(x is not None for x in automatic_options):
+        raise ValueError("frames, target_rms, quads and crease_angle shape the automatic "
+                         "layout: not with grid, layout or tube")
+    if frames is not None and target_rms is not None:
+        raise ValueError("frames: frames and target_rms both choose the number of frames: "
+                         "give one of them")
+    target = _fraction(target_rms, "target_rms") if target_rms is not None else None
+    if fit_shape and iterations == 0:
+        raise ValueError("fit_shape with iterations=0 would fit nothing")
+    # The fit's options before the layout's work (_core.fit checks them too).
+    if not 0 <= fit_samples <= 65 or fit_samples in (1, 2):
+        raise ValueError(f"fit_samples: must be 0 (automatic) or 3 to 65, got {fit_samples}")
+    if resolution < 2 or resolution > 4097:
+        raise ValueError(f"resolution: must be 2 to 4097, got {resolution}")
+    return layouts, target
+
+
 def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=None, tube=None,
             iterations=30, tolerance=1e-3, smoothness=1e-5, fit_samples=9, prevent_folds=False,
             fold_weight=1e-5, fit_shape=False, frames=None, target_rms=None, quads=None,
@@ -216,25 +244,9 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
                   "part_storage_bytes": _core.storage_bytes(part)}
         measured, reference = surface, part
     elif kind == "vertex-frames":
-        layouts = sum(x is not None for x in (grid, layout, tube))
-        automatic_options = (frames, target_rms, quads, crease_angle)
-        if layouts > 1:
-            raise ValueError("kind='vertex-frames': give at most one of grid=(U, V), "
-                             "layout=QUADS_FILE and tube=(RINGS, SECTORS)")
-        if layouts == 1 and any(x is not None for x in automatic_options):
-            raise ValueError("frames, target_rms, quads and crease_angle shape the automatic "
-                             "layout: not with grid, layout or tube")
-        if frames is not None and target_rms is not None:
-            raise ValueError("frames: frames and target_rms both choose the number of frames: "
-                             "give one of them")
-        target = _fraction(target_rms, "target_rms") if target_rms is not None else None
-        if fit_shape and iterations == 0:
-            raise ValueError("fit_shape with iterations=0 would fit nothing")
-        # The fit's options before the layout's work (_core.fit checks them too).
-        if not 0 <= fit_samples <= 65 or fit_samples in (1, 2):
-            raise ValueError(f"fit_samples: must be 0 (automatic) or 3 to 65, got {fit_samples}")
-        if resolution < 2 or resolution > 4097:
-            raise ValueError(f"resolution: must be 2 to 4097, got {resolution}")
+        layouts, target = _vertex_frame_options(grid, layout, tube, frames, target_rms, quads,
+                                                crease_angle, iterations, fit_samples,
+                                                fit_shape, resolution)
         report = {}
         stem = _pathlib.PurePath(source).stem if source[0] != "<" else "mesh"
         model_name = name or f"{stem} (vertex frames)"
@@ -272,6 +284,24 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
                   mean=tuple(w["mean_relative"] for w in ways),
                   max=tuple(w["max_relative"] for w in ways), distances=d)
     return model, report
+
+
+def polygon_peer(truth, target_rms, samples=100000):
+    """The polygon peer of docs/accuracy-storage.md -> dict: the truth simplified by CGAL's
+    edge collapses (Garland-Heckbert) to the fewest edges whose RMS, sqrt((a^2 + b^2) / 2) of
+    the two one-way RMS distances relative to the truth's diagonal, is at most target_rms (a
+    fraction >= 0 such as 0.002, or a string '0.2%'; 0 gives the truth itself).
+
+    Keys: "mesh" (the simplified Mesh), "rms", "bytes" (its storage as the seed's Table 1
+    counts it), "reached", "coarser_rms" (the next coarser trial's, which misses the target),
+    "trials". truth: a Mesh, a mesh file or (vertices, triangles). Raises ValueError for a
+    truth that is not a manifold, oriented triangle mesh. The GIL is released meanwhile.
+    """
+    if isinstance(truth, tuple) and len(truth) == 2:
+        truth = Mesh(*truth)
+    mesh, source = _as_mesh(truth, name="truth")
+    target = _fraction(target_rms, "target_rms") if isinstance(target_rms, str) else target_rms
+    return _core.polygon_peer(_with_triangles(mesh, source), target, samples)
 
 
 def export(model, path, tolerance=None, max_spans=512):

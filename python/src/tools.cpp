@@ -23,6 +23,7 @@
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/model_io.hpp"
+#include "pdesurf/peers.hpp"
 #include "pdesurf/rebuild.hpp"
 #include "pdesurf/section_rebuild.hpp"
 #include "pdesurf/tube_layout.hpp"
@@ -56,6 +57,24 @@ py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
   return py::dict(arg("diagonal") = d.diagonal, arg("model_to_mesh") = oneWay(d.aToB),
                   arg("mesh_to_model") = oneWay(d.bToA), arg("hausdorff") = d.hausdorff,
                   arg("hausdorff_relative") = d.hausdorffRelative);
+}
+
+/// The polygon peer (include/pdesurf/peers.hpp): `truth` simplified to the fewest edges whose
+/// accuracy RMS (both ways, relative to the diagonal) is at most `target`.
+py::dict polygonPeer(const Mesh& truth, double target, std::size_t samples) {
+  if (!(target >= 0.0) || !std::isfinite(target)) badArgument("target", "must be finite, >= 0");
+  if (samples < 1) badArgument("samples", "must be at least 1");
+  DistanceOptions options;
+  options.samples = samples;
+  PolygonPeer peer;
+  {
+    py::gil_scoped_release release;
+    peer = simplifiedPeer(truth, target, options);
+  }
+  using py::arg;
+  return py::dict(arg("mesh") = std::move(peer.mesh), arg("rms") = peer.rms,
+                  arg("bytes") = peer.bytes, arg("reached") = peer.reached,
+                  arg("coarser_rms") = peer.coarserRms, arg("trials") = peer.trials);
 }
 
 /// The slicing options of `slice` and `rebuild` (their --axis, --count, --range, --near,
@@ -285,6 +304,10 @@ void bindTools(py::module_& m) {
   m.def("distance", &distance, py::arg("a"), py::arg("b"), py::arg("samples") = 100000,
         "Metro-style distances between mesh a (the model's) and reference mesh b, both ways\n"
         "(the keys of `pdesurf compare --json`). The GIL is released meanwhile.");
+  m.def("polygon_peer", &polygonPeer, py::arg("truth"), py::arg("target"),
+        py::arg("samples") = 100000,
+        "The truth simplified (Garland-Heckbert edge collapses) to the fewest edges whose RMS\n"
+        "both ways is at most `target` of the diagonal. The GIL is released meanwhile.");
   m.def(
       "slice_mesh",
       [](const Mesh& mesh, const std::string& axis, std::uint32_t count, const py::object& range,

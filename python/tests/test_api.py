@@ -279,6 +279,23 @@ def test_rebuild_cross_sections_is_the_cli_rebuild(cgal_mesh, tmp_path):
     assert len(report["sections"]) == printed["sections"]
 
 
+def test_polygon_peer_reaches_its_target_with_the_fewest_edges(cgal_mesh):
+    """The polygon peer (include/pdesurf/peers.hpp): within the target, its next coarser trial
+    not; a looser target never needs more storage; target 0 is the truth itself."""
+    truth = pdesurf.read_mesh(cgal_mesh("sphere.off"))
+    truth_bytes = pdesurf._core.storage_bytes(truth)
+    tight = pdesurf.polygon_peer(truth, 0.002, samples=5000)
+    loose = pdesurf.polygon_peer(truth, "1%", samples=5000)
+    for peer, target in ((tight, 0.002), (loose, 0.01)):
+        assert peer["reached"] and peer["rms"] <= target < peer["coarser_rms"]
+        assert peer["bytes"] == pdesurf._core.storage_bytes(peer["mesh"]) < truth_bytes
+    assert loose["bytes"] <= tight["bytes"]
+    exact = pdesurf.polygon_peer(truth, 0.0, samples=5000)
+    assert exact["rms"] == 0.0 and exact["bytes"] == truth_bytes
+    with pytest.raises(ValueError, match="target"):
+        pdesurf.polygon_peer(truth, -0.1)
+
+
 def test_export_is_the_cli_export(tmp_path):
     printed = cli_json("export", ROOT / "examples/mug.json", "-o", tmp_path / "cli.step", "--json")
     ours = pdesurf.export(pdesurf.load(ROOT / "examples/mug.json"), tmp_path / "mug.step")
