@@ -219,13 +219,14 @@ class Progress:
 
     def line(self):
         elapsed = time.monotonic() - self.start
+        running = min(self.running, self.total - self.done)
         left = ""
         if self.done:
             left = f", about {_duration(elapsed / self.done * (self.total - self.done))} left"
         width = 24
         filled = width * self.done // max(self.total, 1)
         return (f"[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total} done, "
-                f"{self.failed} failed, {self.running} running, {_duration(elapsed)}{left}")
+                f"{self.failed} failed, {running} running, {_duration(elapsed)}{left}")
 
     def draw(self):
         if self.terminal:
@@ -288,7 +289,7 @@ def summarize(output, rows, write=True):
              + (f"{total('peer_storage_bytes', peers) / 1000:.1f} KB ({len(peers)}) | "
                 if peers else "not measured | ")
              + f"{median('rms_model_to_mesh'):.3%} | {median('rms_mesh_to_model'):.3%} | "
-             f"{_duration(total('fit_cpu_s', rows))} |"]
+             f"{total('fit_cpu_s', rows):.1f} s |"]
     if not write:
         return "\n".join(table)
     lines = ["# pdesurf.batch: summary", "", *table, ""]
@@ -326,13 +327,16 @@ def plot(output, ok):
     def accuracy(r):
         return 100 * math.sqrt(0.5 * (float(r["rms_model_to_mesh"]) ** 2
                                       + float(r["rms_mesh_to_model"]) ** 2))
+    exact = [r for r in ok if accuracy(r) == 0.0]  # no place on a log scale
+    ok = [r for r in ok if accuracy(r) > 0.0]
     figure, axes = plt.subplots(figsize=(7, 5))
     rms = [accuracy(r) for r in ok]
     axes.loglog([float(r["storage_bytes"]) / 1000 for r in ok], rms, "o", color="tab:blue",
                 label="PDE models")
     axes.loglog([float(r["mesh_storage_bytes"]) / 1000 for r in ok], rms, "x",
                 color="tab:gray", label="meshes (exact; drawn at the model's RMS)")
-    peers = [(r, a) for r, a in zip(ok, rms) if _number(r["peer_storage_bytes"]) is not None]
+    peers = [(r, a) for r, a in zip(ok, rms)
+             if _number(r["peer_storage_bytes"]) is not None and float(r["peer_rms"]) > 0]
     if peers:
         axes.loglog([float(r["peer_storage_bytes"]) / 1000 for r, _ in peers],
                     [100 * float(r["peer_rms"]) for r, _ in peers], "s", color="tab:orange",
@@ -342,7 +346,8 @@ def plot(output, ok):
                       [a, 100 * float(r["peer_rms"])], "-", color="tab:gray", lw=0.5)
     axes.set_xlabel("storage KB")
     axes.set_ylabel("RMS % of diagonal")
-    axes.set_title(f"{len(ok)} meshes")
+    axes.set_title(f"{len(ok)} meshes" + (f" ({len(exact)} fitted exactly, RMS 0, not drawn)"
+                                          if exact else ""))
     axes.grid(True, which="both", alpha=0.3)
     axes.legend(fontsize=8)
     figure.tight_layout()
@@ -539,8 +544,11 @@ def _fit_all(todo, output, options, key, threads, scheduler, workers, gather, ti
         def watch():  # the running count, from the scheduler, once a second
             while not stop.wait(1.0):
                 try:
-                    processing = client.processing()
-                    bar.running = sum(k in ours for keys in processing.values() for k in keys)
+                    # A worker's "processing" includes tasks queued on it: at most its
+                    # threads run.
+                    processing, threads_of = client.processing(), client.nthreads()
+                    bar.running = sum(min(threads_of.get(w, 1), sum(k in ours for k in keys))
+                                      for w, keys in processing.items())
                 except Exception:  # noqa: BLE001 -- a progress line is not worth failing for
                     pass
                 bar.draw()
