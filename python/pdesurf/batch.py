@@ -528,6 +528,7 @@ def _fit_all(todo, output, options, key, threads, scheduler, workers, gather, ti
     try:
         if client.dashboard_link and _has_dashboard(client):
             print(f"Dask dashboard: {client.dashboard_link}", file=out, flush=True)
+        _check_workers(client, scheduler, out)
         futures = {}
         submitted = time.monotonic()
         for path, rel in todo:
@@ -578,6 +579,23 @@ def _fit_all(todo, output, options, key, threads, scheduler, workers, gather, ti
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+def _probe():
+    import pdesurf.batch  # noqa: F401 -- what every task needs
+    return True
+
+
+def _check_workers(client, scheduler, out):
+    """Waits for a worker (saying so when none is there yet) and checks that it imports
+    pdesurf: a cluster whose workers cannot is an InputError, not a row of failures a mesh."""
+    if not client.scheduler_info().get("workers"):
+        print(f"waiting for a worker to connect to {scheduler}", file=out, flush=True)
+    try:
+        client.submit(_probe, pure=False).result()
+    except Exception as e:  # noqa: BLE001 -- whatever the worker raised, it cannot fit
+        raise InputError(f"the workers cannot import pdesurf ({type(e).__name__}: {e}): give "
+                         "them its folder on PYTHONPATH (docs/batch.md)") from None
 
 
 def _has_dashboard(client):

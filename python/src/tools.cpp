@@ -44,10 +44,16 @@ py::dict oneWay(const OneWayDistance& d) {
                   arg("cover_radius") = d.coverRadius);
 }
 
-py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
+/// The distance options of `samples` face samples a mesh, checked.
+DistanceOptions sampled(std::size_t samples) {
   if (samples < 1) badArgument("samples", "must be at least 1");
   DistanceOptions options;
   options.samples = samples;
+  return options;
+}
+
+py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
+  const DistanceOptions options = sampled(samples);
   MeshDistance d;
   {
     py::gil_scoped_release release;
@@ -63,14 +69,11 @@ py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
 /// accuracy RMS (both ways, relative to the diagonal) is at most `target`.
 py::dict polygonPeer(const Mesh& truth, double target, std::size_t samples) {
   if (!(target >= 0.0) || !std::isfinite(target)) badArgument("target", "must be finite, >= 0");
-  if (samples < 1) badArgument("samples", "must be at least 1");
-  DistanceOptions options;
-  options.samples = samples;
-  PolygonPeer peer;
-  {
+  const DistanceOptions options = sampled(samples);
+  PolygonPeer peer = [&] {
     py::gil_scoped_release release;
-    peer = simplifiedPeer(truth, target, options);
-  }
+    return simplifiedPeer(truth, target, options);
+  }();
   using py::arg;
   return py::dict(arg("mesh") = std::move(peer.mesh), arg("rms") = peer.rms,
                   arg("bytes") = peer.bytes, arg("reached") = peer.reached,
