@@ -21,7 +21,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 # Meshes whose fits take a second of CPU or more with FIT (a few seconds on an idle core).
 MESHES = ("elephant.off", "three_peaks.off", "lion-head.off", "dragknob.off", "part.off",
           "double-torus-3-holes.off", "pipe.off", "u.off")
-FIT = {"frames": 100, "iterations": 15, "samples": 20000}
+FIT = {"frames": 100, "iterations": 20, "samples": 20000}
 NO_OP_TASKS = 200
 
 

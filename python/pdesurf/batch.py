@@ -565,10 +565,14 @@ def _fit_all(todo, output, options, key, threads, scheduler, workers, gather, ti
             row = {c: "" for c in COLUMNS}
             row.update(result, path=rel, options=key)
             if row["status"] == "ok":
-                model = output / f"{rel}.json"
-                if gather:
-                    _batch_fit.write_atomically(str(model), row.pop("model_json"))
                 row["model"] = f"{rel}.json"
+                if gather:
+                    _batch_fit.write_atomically(str(output / row["model"]), row.pop("model_json"))
+                elif not is_complete(row, output, key, False):
+                    row.update(status="failed", model="", error=(
+                        f"the worker wrote {row['model']}, but this client does not find it "
+                        f"whole in {output}: is OUTPUT a folder the workers share? (else "
+                        "--gather)"))
             append_row(output / RESULTS, row)
             bar.finished(row)
             future.release()
