@@ -34,6 +34,10 @@ install(TARGETS ${PDESURF_INSTALL_TARGETS} EXPORT pdesurfTargets
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # The CLI, not exported (its target name would be pdesurf::pdesurf's).
 if(TARGET pdesurf)
+  if(BUILD_SHARED_LIBS)
+    # The installed CLI finds the installed libraries wherever the prefix is.
+    set_target_properties(pdesurf PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
+  endif()
   install(TARGETS pdesurf RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 install(EXPORT pdesurfTargets NAMESPACE pdesurf:: DESTINATION ${PDESURF_CMAKE_DIR})
