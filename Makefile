@@ -68,4 +68,4 @@ format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	rm -rf $(BUILD) out web/dist e2e/artifacts
+	rm -rf $(BUILD) $(BUILD)-core-only out web/dist e2e/artifacts

@@ -1,7 +1,7 @@
 // pdesurf_accuracy: one ground truth of the accuracy-versus-storage benchmark
 // (docs/accuracy-storage.md, driven by scripts/accuracy). Fits vertex-frame models of growing
 // layouts, picks for each accuracy level the smallest that reaches it, finds the polygon and
-// NURBS peers at that model's RMS (include/pdesurf/peers.hpp), and prints JSON.
+// NURBS peers at that model's RMS (apps/accuracy/peers.hpp), and prints JSON.
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -16,10 +16,10 @@
 
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/mesh_io.hpp"
-#include "pdesurf/peers.hpp"
 #include "pdesurf/rebuild.hpp"
 #include "pdesurf/section_rebuild.hpp"
 #include "pdesurf/tube_layout.hpp"
+#include "peers.hpp"
 
 namespace pdesurf {
 namespace {

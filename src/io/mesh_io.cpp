@@ -105,14 +105,30 @@ MeshFormat meshFormatFromPath(const std::string& path) {
   fail(path, "unknown mesh format '{}' (use .obj, .ply, .stl, .glb or .off)", extension);
 }
 
+namespace detail {
+
+CgalMeshReaders& cgalMeshReaders() {
+  static CgalMeshReaders readers;
+  return readers;
+}
+
+}  // namespace detail
+
 Mesh readMesh(const std::string& path) {
   const MeshFormat format = meshFormatFromPath(path);
+  const detail::CgalMeshReaders& cgal = detail::cgalMeshReaders();
+  const detail::MeshReader readers[] = {detail::readObj, detail::readPly, cgal.stl, detail::readGlb,
+                                        cgal.off};  // MeshFormat's order
+  static_assert(std::size(readers) == static_cast<std::size_t>(MeshFormat::Off) + 1);
+  const detail::MeshReader reader = readers[static_cast<std::size_t>(format)];
+  if (reader == nullptr) {
+    fail(path,
+         "reading {} files needs pdesurf's CGAL module (pdesurf::cgal), which this "
+         "program does not link",
+         format == MeshFormat::Off ? "OFF" : "STL");
+  }
   const std::string data = readFile(path);
-  using Reader = Mesh (*)(const std::string& data, const std::string& path);
-  static constexpr Reader kReaders[] = {detail::readObj, detail::readPly, detail::readStl,
-                                        detail::readGlb, detail::readOff};  // MeshFormat's order
-  static_assert(std::size(kReaders) == static_cast<std::size_t>(MeshFormat::Off) + 1);
-  Mesh mesh = kReaders[static_cast<std::size_t>(format)](data, path);
+  Mesh mesh = reader(data, path);
   checkReadMesh(mesh, path);
   return mesh;
 }

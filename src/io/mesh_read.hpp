@@ -44,10 +44,24 @@ Mesh readPly(const std::string& data, const std::string& path);
 /// glb, through tinygltf (mesh_read_glb.cpp).
 Mesh readGlb(const std::string& data, const std::string& path);
 
-/// ASCII or binary OFF (NOFF: with normals), polygons fanned into triangles, through CGAL.
+/// ASCII or binary OFF (NOFF: with normals), polygons fanned into triangles, through CGAL
+/// (mesh_read_cgal.cpp, in the CGAL module pdesurf::cgal).
 Mesh readOff(const std::string& data, const std::string& path);
 
-/// Binary or ASCII STL through CGAL, corners at equal positions merged into one vertex.
+/// Binary or ASCII STL through CGAL, corners at equal positions merged into one vertex (the
+/// CGAL module).
 Mesh readStl(const std::string& data, const std::string& path);
+
+/// A format's reader: the file's bytes and its path (for messages).
+using MeshReader = Mesh (*)(const std::string& data, const std::string& path);
+
+/// The readers of OFF and STL, which the core calls without linking them: null until the CGAL
+/// module is linked, whose mesh_read_cgal.cpp sets them as the program starts (its users link
+/// with --undefined=pdesurf_cgal_mesh_readers, which keeps that object in the program).
+struct CgalMeshReaders {
+  MeshReader off = nullptr;
+  MeshReader stl = nullptr;
+};
+CgalMeshReaders& cgalMeshReaders();
 
 }  // namespace pdesurf::detail

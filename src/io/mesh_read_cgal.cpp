@@ -207,3 +207,18 @@ Mesh readStl(const std::string& data, const std::string& path) {
 }
 
 }  // namespace pdesurf::detail
+
+namespace {
+
+bool registerCgalMeshReaders() {
+  pdesurf::detail::CgalMeshReaders& readers = pdesurf::detail::cgalMeshReaders();
+  readers.off = pdesurf::detail::readOff;
+  readers.stl = pdesurf::detail::readStl;
+  return true;
+}
+
+}  // namespace
+
+// Registers the readers with readMesh (mesh_read.hpp) before main, in every program that links
+// the CGAL module: its link options name this symbol, so the linker keeps this object.
+extern "C" const bool pdesurf_cgal_mesh_readers = registerCgalMeshReaders();

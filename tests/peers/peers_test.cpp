@@ -9,9 +9,9 @@
 #include <TColgp_Array2OfPnt.hxx>
 
 #include "pdesurf/analysis.hpp"
-#include "pdesurf/peers.hpp"
 #include "pdesurf/rebuild.hpp"
 #include "pdesurf/tube_layout.hpp"
+#include "peers.hpp"
 #include "support/test_meshes.hpp"
 
 namespace pdesurf {

@@ -1,5 +1,5 @@
 // The NURBS peer: bicubic B-splines fitted by linear least squares on a layout's
-// parameterisation, the coarsest net within a target RMS (include/pdesurf/peers.hpp).
+// parameterisation, the coarsest net within a target RMS (apps/accuracy/peers.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "numerics/triangle_tree.hpp"
-#include "pdesurf/peers.hpp"
+#include "peers.hpp"
 
 namespace pdesurf {
 

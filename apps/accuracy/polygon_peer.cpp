@@ -1,5 +1,5 @@
 // The polygon peer: CGAL's Garland–Heckbert edge collapse, the fewest edges within a target
-// RMS (include/pdesurf/peers.hpp).
+// RMS (apps/accuracy/peers.hpp).
 #include <cmath>
 
 #include <CGAL/Simple_cartesian.h>
@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "pdesurf/analysis.hpp"
-#include "pdesurf/peers.hpp"
+#include "peers.hpp"
 
 namespace pdesurf {
 
