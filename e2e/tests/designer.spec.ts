@@ -465,3 +465,25 @@ test('Mirror copies the selected frame across x = 0, welded at the seam: the sav
   const [a, b] = file.frames.map((f: { vertices: number[] }) => new Set(f.vertices));
   expect([...a].filter((v) => b.has(v)).sort()).toEqual(m.vertices.flatMap((q: number[], v: number) => (q[0] === 0 ? [v] : [])).sort());
 });
+
+test('Ctrl+A pressed while an undo is reloading selects the frames of the model the undo restores', async ({ page, studio }) => {
+  await newTopView(page, studio, 'grid', 'race.json', 3, 1);
+  await page.keyboard.press('Control+a');
+  await page.keyboard.press('s');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(12);
+  await settle(page);
+  // The undo answered late (a loaded machine): Ctrl+A comes while it is in flight. It waits
+  // for the undo's reload, as the toolbar's actions do, and selects the 3 frames it restores
+  // (before, it selected the 12 frames of the split model, which the reload then cleared).
+  await page.route('**/api/undo', async (route) => {
+    await new Promise((r) => setTimeout(r, 600));
+    await route.continue();
+  });
+  await page.keyboard.press('Control+z');
+  await page.keyboard.press('Control+a');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(3);
+  await expect.poll(async () => [...(await hook<{ frames: number[] }>(page, 'selection')).frames].sort()).toEqual([0, 1, 2]);
+  await page.keyboard.press('s');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(12);
+  expect((await studio.state()).undo).toBe(1);
+});

@@ -84,19 +84,22 @@ export function mountModeller(
     scaleSelection: () => {},
     rotateSelection: () => {},
     toggleDrawForce: () => {},
-    select: (how) => {
-      const model = store.state.model;
-      if (!model) return;
-      const picked = { vertices: store.state.selectedVertices, frames: store.state.selectedFrames };
-      const next = how === 'all' ? selectAll(model) : how === 'inverse' ? selectInverse(model, picked) : selectLinked(model, picked);
-      store.update(['selection', 'forces'], (s) => {
-        s.selectedVertices = next.vertices;
-        s.selectedVertex = next.vertices.length ? next.vertices[next.vertices.length - 1] : null;
-        s.selectedFrames = next.frames;
-        s.selectedForce = 0;
-      });
-      studio.say(`${next.vertices.length} vertices, ${next.frames.size} frames selected`);
-    },
+    // Queued as the toolbar's actions are: Ctrl+A pressed while an undo's reload is in flight
+    // selects the frames of the model the undo restores, not those of the model it replaces.
+    select: (how) =>
+      void studio.run(async () => {
+        const model = store.state.model;
+        if (!model) return;
+        const picked = { vertices: store.state.selectedVertices, frames: store.state.selectedFrames };
+        const next = how === 'all' ? selectAll(model) : how === 'inverse' ? selectInverse(model, picked) : selectLinked(model, picked);
+        store.update(['selection', 'forces'], (s) => {
+          s.selectedVertices = next.vertices;
+          s.selectedVertex = next.vertices.length ? next.vertices[next.vertices.length - 1] : null;
+          s.selectedFrames = next.frames;
+          s.selectedForce = 0;
+        });
+        studio.say(`${next.vertices.length} vertices, ${next.frames.size} frames selected`);
+      }),
   };
   $('select-all').addEventListener('click', () => actions.select('all'));
   $('select-inverse').addEventListener('click', () => actions.select('inverse'));
