@@ -4,7 +4,9 @@
 // that leaves no vertex unused, and a point drag of a marching chain told about before it is
 // made and turned into the global chain; and the designer tools, each checked in the saved
 // file: selections and typed moves, axis lock and snap, drags in the shaded view, Delete on the
-// selection, Split on several frames or all, symmetric drags and Mirror.
+// selection, Split on several frames or all, symmetric drags and Mirror, drags snapped to
+// vertices, frame edges and the surface, a distance typed during a drag; and Ctrl+A pressed
+// while an undo reloads.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
@@ -16,6 +18,9 @@ import type { Studio } from './fixture';
 const ROUNDING = 1e-9;
 /** A preset's camera looks along its axis to rounding (no damping left over from an orbit). */
 const ON_AXIS = 1e-9;
+/** The top view's camera leans this far toward -y (VIEW_DIRECTIONS in web/src/viewport.ts): a
+ * drag in the plane facing it rises by at most this fraction of its length. */
+const TOP_VIEW_TILT = 1e-4;
 
 type Point = { x: number; y: number };
 const hook = <T>(page: Page, name: string, ...args: unknown[]) =>
@@ -486,4 +491,113 @@ test('Ctrl+A pressed while an undo is reloading selects the frames of the model 
   await page.keyboard.press('s');
   await expect.poll(async () => (await model(studio)).frames.length).toBe(12);
   expect((await studio.state()).undo).toBe(1);
+});
+
+/** Presses vertex `v`'s handle in the frame view, moves the pointer to `to` (client pixels)
+ * in steps, and releases it; the page's edits answered. */
+async function dragHandleTo(page: Page, v: number, to: Point): Promise<void> {
+  const p = await hook<Point>(page, 'vertexScreen', v);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(to.x, to.y, { steps: 6 });
+  await page.mouse.up();
+  await settle(page);
+}
+
+/** The client point a fraction `t` of the way from a to b. */
+const between = (a: Point, b: Point, t: number): Point => ({ x: a.x + t * (b.x - a.x), y: a.y + t * (b.y - a.y) });
+
+test('snapping drags to a vertex and to a frame edge: the saved file has the vertex exactly there', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'grid', 'snap-to.json', 3, 1);
+  // Two frames apart (the middle one deleted): x from 0 to 1 and from 2 to 3.
+  expect(await hook<string>(page, 'edit', { op: 'delete-frames', frames: [1] })).toBe('');
+  await page.reload();
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+  const m = await model(studio);
+  const [left, right] = m.frames.map((f: { vertices: number[] }) => f.vertices);
+
+  // Vertices: the right frame's P1 dropped a few pixels off the left frame's P3 lands on it.
+  await page.getByTestId('snap-to').selectOption('vertices');
+  const target = await hook<Point>(page, 'vertexScreen', left[2]);
+  await dragHandleTo(page, right[0], { x: target.x + 4, y: target.y - 3 });
+  // Frame edges: its P7 dropped 4 px right of the left frame's side x = 1 (between P4 and P5)
+  // lands on that side.
+  await page.getByTestId('snap-to').selectOption('edges');
+  const side = between(await hook<Point>(page, 'vertexScreen', left[3]), await hook<Point>(page, 'vertexScreen', left[4]), 0.4);
+  await dragHandleTo(page, right[6], { x: side.x + 4, y: side.y });
+  await page.screenshot({ path: shot('designer-snap-edge.png') });
+
+  const file = await saved(page, studio, 'snap-to.json');
+  expect(file.vertices[right[0]]).toEqual(m.vertices[left[2]]);
+  const [x, y, z] = file.vertices[right[6]];
+  expect(Math.abs(x - 1)).toBeLessThan(ROUNDING);
+  expect(y).toBeGreaterThan(0.5);
+  expect(y).toBeLessThan(1);
+  expect(Math.abs(z)).toBeLessThan(ROUNDING);
+  // Nothing else moved; one undo step per drag (after the delete).
+  file.vertices.forEach((p: number[], v: number) => {
+    if (v !== right[0] && v !== right[6]) expect(p).toEqual(m.vertices[v]);
+  });
+  expect((await studio.state()).undo).toBe(3);
+});
+
+test('snapping a drag onto the surface: the vertex lands on the patch under the pointer, not in the plane facing the camera', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'grid', 'snap-surface.json', 2, 1);
+  await page.getByTestId('view-iso').click();
+  await page.waitForTimeout(400);
+  const m = await model(studio);
+  const [left, right] = m.frames.map((f: { vertices: number[] }) => f.vertices);
+  await page.getByTestId('snap-to').selectOption('surface');
+  // The right frame's far corner dropped on the middle of the left frame's diagonal (P1 to P5,
+  // on the plane z = 0).
+  const to = between(await hook<Point>(page, 'vertexScreen', left[0]), await hook<Point>(page, 'vertexScreen', left[4]), 0.5);
+  await dragHandleTo(page, right[4], to);
+  await page.screenshot({ path: shot('designer-snap-surface.png') });
+  const file = await saved(page, studio, 'snap-surface.json');
+  const [x, y, z] = file.vertices[right[4]];
+  expect(Math.abs(z)).toBeLessThan(ROUNDING); // on the surface z = 0
+  expect(x).toBeGreaterThan(0.2);
+  expect(x).toBeLessThan(0.8);
+  expect(Math.abs(x - y)).toBeLessThan(0.05); // on the diagonal, to a pixel or so
+  expect((await studio.state()).undo).toBe(1);
+});
+
+test('a distance typed during a drag moves exactly that far: along a locked axis, or along the drag; Enter applies', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'single', 'typed.json');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(400);
+  const m = await model(studio);
+  const v = m.frames[0].vertices[4]; // P5, the corner (1, 1, 0)
+  const typedDrag = async (dx: number, dy: number, keys: string[]) => {
+    const p = await hook<Point>(page, 'vertexScreen', v);
+    await page.mouse.move(p.x, p.y);
+    await page.mouse.down();
+    await page.mouse.move(p.x + dx, p.y + dy, { steps: 4 });
+    for (const k of keys) await page.keyboard.press(k);
+    await page.mouse.move(p.x + 2 * dx, p.y, { steps: 3 }); // after Enter: no effect
+    await page.mouse.up();
+    await settle(page);
+  };
+  // Along x (X locks it), -3/8 typed: x - 0.375 exactly.
+  await typedDrag(-40, 5, ['x', '-', '3', '/', '8', 'Enter']);
+  await expect(page.getByTestId('status')).toContainText('drag: distance -3/8');
+  await page.screenshot({ path: shot('designer-typed-distance.png') });
+  let file = await saved(page, studio, 'typed.json');
+  expect(file.vertices[v]).toEqual([0.625, 1, 0]);
+  // Free, up and to the left on screen (top view: -x, +y), 0.55 typed then one digit taken
+  // back: 0.5 along the drag's direction.
+  await typedDrag(-30, -30, ['0', '.', '5', '5', 'Backspace', 'Enter']);
+  file = await saved(page, studio, 'typed.json');
+  const d = file.vertices[v].map((c: number, i: number) => c - [0.625, 1, 0][i]);
+  expect(Math.abs(Math.hypot(d[0], d[1], d[2]) - 0.5)).toBeLessThan(ROUNDING);
+  expect(d[0]).toBeLessThan(-0.2);
+  expect(d[1]).toBeGreaterThan(0.2);
+  // The top view leans 1e-4 toward -y (viewport.ts), so its facing plane climbs that much.
+  expect(Math.abs(d[2])).toBeLessThan(TOP_VIEW_TILT * 0.5);
+  expect((await studio.state()).undo).toBe(2);
 });

@@ -11,6 +11,9 @@ import type { Topic } from './store';
 import type { Studio } from './studio';
 import type { Viewport } from './viewport';
 import { coincidentWith, toggled, toggledInStack } from './structure';
+import { nearestOnSegments, nearestVertex, onSurface, outlineSegments, surfaceSnapshot, TYPED_CHARACTERS, typedOffset } from './snap';
+import type { SnapMode } from './snap';
+import type * as THREE from 'three';
 
 /** Puts each vertex of `moved` at its start `from[i]` offset by `d` in the store (one update,
  * announcing `topics`), and moves the frame view's handles of those but `skip` (a handle the
@@ -117,6 +120,14 @@ export function mountDragTool(studio: Studio): DragTool {
     view: Viewport;
     /** Symmetry on: the mirror plane's axis, and what mirrorPartners found at the start. */
     mirror: ({ axis: 0 | 1 | 2 } & ReturnType<typeof mirrorPartners>) | null;
+    /** What the drag snaps to, taken at its start (what does not move with it). */
+    snap:
+      | { mode: 'vertices'; candidates: number[] }
+      | { mode: 'edges'; segments: [number, number][] }
+      | { mode: 'surface'; surface: THREE.Mesh }
+      | null;
+    /** The distance typed during the drag (as typed), or '' (the pointer places it). */
+    typed: string;
   } | null = null;
   let press: { x: number; y: number; shift: boolean; ctrl: boolean } | null = null;
   let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;
@@ -138,7 +149,7 @@ export function mountDragTool(studio: Studio): DragTool {
       const from = moved.map((v) => [...model.vertices[v]] as Vec3);
       const axis = symmetryAxis();
       const mirror = axis === null ? null : { axis, ...mirrorPartners(model.vertices, moved, from, axis) };
-      drag = { vertex, pointer: ev.pointerId, moved, from, axis: null, view, mirror };
+      drag = { vertex, pointer: ev.pointerId, moved, from, axis: null, view, mirror, snap: snapTargets(new Set([...moved, ...(mirror?.partners ?? [])])), typed: '' };
       studio.beginGesture('drag');
       ev.preventDefault();
     },
@@ -210,16 +221,52 @@ export function mountDragTool(studio: Studio): DragTool {
     tool.move(ev);
   });
 
+  /** What a drag that moves `moving` snaps to: the panel's *snap drags to*, and the vertices,
+   * outline segments or surface (as it is now) that stay put. */
+  function snapTargets(moving: ReadonlySet<number>): NonNullable<typeof drag>['snap'] {
+    const model = store.state.model!;
+    const mode = $<HTMLSelectElement>('snap-to').value as SnapMode;
+    if (mode === 'vertices') return { mode, candidates: model.vertices.map((_, v) => v).filter((v) => !moving.has(v)) };
+    if (mode === 'edges') return { mode, segments: outlineSegments(model.frames, moving) };
+    const mesh = store.state.mesh;
+    if (mode === 'surface' && mesh) return { mode, surface: surfaceSnapshot(mesh.positions, mesh.indices) };
+    return null;
+  }
+
+  /** The point the grabbed vertex snaps to for the pointer at (x, y), or null (none near). */
+  function snapPoint(x: number, y: number): Vec3 | null {
+    const snap = drag?.snap;
+    if (!drag || !snap) return null;
+    const vertices = store.state.model!.vertices;
+    if (snap.mode === 'vertices') {
+      const v = nearestVertex(vertices, snap.candidates, drag.view, x, y);
+      return v === null ? null : ([...vertices[v]] as Vec3);
+    }
+    if (snap.mode === 'edges') return nearestOnSegments(vertices, snap.segments, drag.view, x, y);
+    return onSurface(snap.surface, drag.view, x, y);
+  }
+
   /** Moves the dragged vertices for the pointer at (x, y): in the plane facing the camera, or
    * along the locked axis (the point of the axis through the start nearest the pointer's
-   * ray), the offset rounded to the grid step when one is set. */
+   * ray). A typed distance sets the offset's length (along the axis, or the pointer's
+   * direction); else a snap target near the pointer (free drags) places the grabbed vertex
+   * on it; else the offset is rounded to the grid step when one is set. */
   function dragTo(x: number, y: number): void {
     if (!drag) return;
     const { vertex, moved, from } = drag;
     const start = from[moved.indexOf(vertex)];
     const target = drag.axis === null ? drag.view.dragTarget(start, x, y) : drag.view.axisTarget(start, drag.axis, x, y);
     if (!target) return;
-    const d = snapped([target[0] - start[0], target[1] - start[1], target[2] - start[2]], snapStep());
+    const free: [number, number, number] = [target[0] - start[0], target[1] - start[1], target[2] - start[2]];
+    const typed = drag.typed ? evaluateExpression(drag.typed) : null;
+    const snap = typed === null && drag.axis === null ? snapPoint(x, y) : null;
+    const d =
+      typed !== null && Number.isFinite(typed)
+        ? typedOffset(typed, drag.axis, free)
+        : snap
+          ? ([snap[0] - start[0], snap[1] - start[1], snap[2] - start[2]] as [number, number, number])
+          : snapped(free, snapStep());
+    if (!d) return;
     const skip = store.state.selectedVertex;
     const mirror = drag.mirror;
     let all = moved;
@@ -253,18 +300,28 @@ export function mountDragTool(studio: Studio): DragTool {
     return step !== null && step > 0 && Number.isFinite(step) ? step : 0;
   };
 
-  // X, Y or Z during a drag locks it to that axis (again: free again), as in Blender; the
-  // key is the drag's, not the shortcut's (taken before keys.ts sees it).
+  // During a drag, as in Blender (the keys are the drag's, not the shortcuts': taken before
+  // keys.ts sees them): X, Y or Z locks it to that axis (again: free again); a number typed
+  // sets the distance (Backspace edits it), Enter applies it and ends the drag.
   document.addEventListener(
     'keydown',
     (ev) => {
+      if (!drag || ev.ctrlKey || ev.metaKey || ev.altKey) return;
       const k = ['x', 'y', 'z'].indexOf(ev.key.toLowerCase());
-      if (!drag || k < 0 || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      const typing = TYPED_CHARACTERS.test(ev.key) || (ev.key === 'Backspace' && drag.typed !== '');
+      if (k < 0 && !typing && ev.key !== 'Enter') return;
       ev.preventDefault();
       ev.stopImmediatePropagation();
-      drag.axis = drag.axis === k ? null : (k as 0 | 1 | 2);
-      studio.say(drag.axis === null ? 'drag: free' : `drag: along ${'xyz'[drag.axis]} only`);
+      if (k >= 0) {
+        drag.axis = drag.axis === k ? null : (k as 0 | 1 | 2);
+        studio.say(drag.axis === null ? 'drag: free' : `drag: along ${'xyz'[drag.axis]} only`);
+      } else if (typing) {
+        drag.typed = ev.key === 'Backspace' ? drag.typed.slice(0, -1) : drag.typed + ev.key;
+        const value = evaluateExpression(drag.typed);
+        studio.say(drag.typed ? `drag: distance ${drag.typed}${value === null ? ' (not a number yet)' : ''}; Enter applies` : 'drag: free');
+      }
       if (drag.at) dragTo(drag.at.x, drag.at.y);
+      if (ev.key === 'Enter') void tool.end({ pointerId: drag.pointer } as PointerEvent);
     },
     true,
   );
