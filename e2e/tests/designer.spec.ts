@@ -601,3 +601,37 @@ test('a distance typed during a drag moves exactly that far: along a locked axis
   expect(Math.abs(d[2])).toBeLessThan(TOP_VIEW_TILT * 0.5);
   expect((await studio.state()).undo).toBe(2);
 });
+
+test('loop and ring select (Alt+L, Alt+R) take the row and the column of frames through the picked one: moves typed on them land in the saved file', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'tube', 'strips.json', 4, 3);
+  await page.getByTestId('view-front').click();
+  await page.waitForTimeout(400);
+  const m = await model(studio);
+  const used = (frames: number[]) => new Set<number>(frames.flatMap((f) => m.frames[f].vertices));
+  const moveBy = async (d: string[]) => {
+    for (const [i, a] of ['x', 'y', 'z'].entries()) await page.getByTestId(`offset-${a}`).fill(d[i]);
+    await page.getByTestId('offset-apply').click();
+    await settle(page);
+    await page.locator('body').click({ position: { x: 5, y: 5 } }); // keys are keys again
+  };
+  // Frame 6: the middle row's frame facing the camera. Its loop: the middle row round the tube.
+  await clickPatch(page, 6);
+  await page.keyboard.press('Alt+l');
+  await expect.poll(async () => (await hook<{ frames: number[] }>(page, 'selection')).frames).toEqual([4, 5, 6, 7]);
+  await moveBy(['0', '0', '1/2']);
+  await page.keyboard.press('Escape');
+  // Its ring: the column of frames up the tube.
+  await clickPatch(page, 6);
+  await page.keyboard.press('Alt+r');
+  await expect.poll(async () => (await hook<{ frames: number[] }>(page, 'selection')).frames).toEqual([2, 6, 10]);
+  await moveBy(['1/4', '0', '0']);
+  await page.screenshot({ path: shot('designer-loop-ring.png') });
+  const file = await saved(page, studio, 'strips.json');
+  const loop = used([4, 5, 6, 7]), ring = used([2, 6, 10]);
+  m.vertices.forEach((p: number[], v: number) => {
+    const expected = [p[0] + (ring.has(v) ? 0.25 : 0), p[1], p[2] + (loop.has(v) ? 0.5 : 0)];
+    expect(close(file.vertices[v], expected)).toBe(true);
+  });
+  expect((await studio.state()).undo).toBe(2);
+});

@@ -15,7 +15,7 @@ import type { Gizmo } from './gizmo';
 import { modelBox } from './viewport';
 import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
 import type { Studio } from './studio';
-import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
+import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, selectStrip, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
 import type { DragTool } from './drag';
@@ -43,8 +43,9 @@ export interface ModellerActions {
   scaleSelection(): void;
   rotateSelection(): void;
   toggleDrawForce(): void;
-  /** Select all, the inverse of the selection, or everything linked to it. */
-  select(how: 'all' | 'inverse' | 'linked'): void;
+  /** Select all, the inverse of the selection, everything linked to it, or the strips of
+   * frames through it along u (loop) or v (ring). */
+  select(how: 'all' | 'inverse' | 'linked' | 'loop' | 'ring'): void;
 }
 
 export function mountModeller(
@@ -91,7 +92,14 @@ export function mountModeller(
         const model = store.state.model;
         if (!model) return;
         const picked = { vertices: store.state.selectedVertices, frames: store.state.selectedFrames };
-        const next = how === 'all' ? selectAll(model) : how === 'inverse' ? selectInverse(model, picked) : selectLinked(model, picked);
+        const next =
+          how === 'all'
+            ? selectAll(model)
+            : how === 'inverse'
+              ? selectInverse(model, picked)
+              : how === 'linked'
+                ? selectLinked(model, picked)
+                : selectStrip(model, picked, how === 'loop' ? 'u' : 'v');
         store.update(['selection', 'forces'], (s) => {
           s.selectedVertices = next.vertices;
           s.selectedVertex = next.vertices.length ? next.vertices[next.vertices.length - 1] : null;
@@ -104,6 +112,8 @@ export function mountModeller(
   $('select-all').addEventListener('click', () => actions.select('all'));
   $('select-inverse').addEventListener('click', () => actions.select('inverse'));
   $('select-linked').addEventListener('click', () => actions.select('linked'));
+  $('select-loop').addEventListener('click', () => actions.select('loop'));
+  $('select-ring').addEventListener('click', () => actions.select('ring'));
   $('new-model').addEventListener('click', actions.newModel);
   $('extrude').addEventListener('click', actions.extrude);
   $('add-frame').addEventListener('click', actions.addFrame);
