@@ -200,16 +200,22 @@ test.describe('a marching chain', () => {
   });
 });
 
-test('select linked, invert, all, with moves typed as expressions: the saved file has the numbers', async ({ page, studio }) => {
+/** Opens the studio on a new row of 3 frames (New…) less its middle one: two islands, x from
+ * 0 to 1 and from 2 to 3, seen from the top; their model. */
+async function twoIslands(page: Page, studio: Studio, file: string) {
   await openStudio(page, studio);
-  await newModel(page, 'grid', 'islands.json', 3, 1);
-  // Two islands: frame 0, and the old frame 2 (the middle one deleted).
+  await newModel(page, 'grid', file, 3, 1);
   expect(await hook<string>(page, 'edit', { op: 'delete-frames', frames: [1] })).toBe('');
   await page.reload();
   await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
   await page.getByTestId('view-top').click();
   await page.waitForTimeout(400);
-  const m = await model(studio);
+  return model(studio);
+}
+
+test('select linked, invert, all, with moves typed as expressions: the saved file has the numbers', async ({ page, studio }) => {
+  // Two islands: frame 0, and the old frame 2 (the middle one deleted).
+  const m = await twoIslands(page, studio, 'islands.json');
   const island0 = [...new Set<number>(m.frames[0].vertices)];
   const island1 = [...new Set<number>(m.frames[1].vertices)];
   const p = await hook<Point>(page, 'vertexScreen', m.frames[0].vertices[1]);
@@ -307,11 +313,11 @@ test('a vertex dragged in the shaded surface view moves as its handle would: one
   expect(cameras.surface.direction[2]).toBeGreaterThan(0.999);
 });
 
-/** Opens the studio on a new model (New…) seen from the top. */
-async function newTopView(page: Page, studio: Studio, kind: string, file: string, u = 1, v = 1): Promise<void> {
+/** Opens the studio on a new model (New…) seen from `view` (the top by default). */
+async function newModelInView(page: Page, studio: Studio, kind: string, file: string, u = 1, v = 1, view = 'top'): Promise<void> {
   await openStudio(page, studio);
   await newModel(page, kind, file, u, v);
-  await page.getByTestId('view-top').click();
+  await page.getByTestId(`view-${view}`).click();
   await page.waitForTimeout(400);
 }
 
@@ -334,7 +340,7 @@ async function saved(page: Page, studio: Studio, name: string) {
 }
 
 test('Delete deletes the selected frames in one undo step; Shift+Delete removes a force instead', async ({ page, studio }) => {
-  await newTopView(page, studio, 'grid', 'delete.json', 3, 1);
+  await newModelInView(page, studio, 'grid', 'delete.json', 3, 1);
   const m = await model(studio);
   await clickPatch(page, 0);
   await clickPatch(page, 2, true);
@@ -368,7 +374,7 @@ function onLattice(file: { vertices: number[][]; frames: { vertices: number[] }[
 }
 
 test('Split 4 on several frames, then on all: shared edges stay shared, no vertex unused, one undo step each', async ({ page, studio }) => {
-  await newTopView(page, studio, 'grid', 'subdivide.json', 3, 1);
+  await newModelInView(page, studio, 'grid', 'subdivide.json', 3, 1);
   // Frames 0 and 2 into 2 × 2: the cut across v runs on through frame 1, which becomes 2.
   await clickPatch(page, 0);
   await clickPatch(page, 2, true);
@@ -443,7 +449,7 @@ test('symmetry across x = 0: a drag moves the mirror partner mirrored and keeps 
 });
 
 test('Mirror copies the selected frame across x = 0, welded at the seam: the saved file has the mirror image', async ({ page, studio }) => {
-  await newTopView(page, studio, 'single', 'mirror-frames.json');
+  await newModelInView(page, studio, 'single', 'mirror-frames.json');
   const m = await model(studio);
   await clickPatch(page, 0);
   // Without a plane chosen, Mirror says what to do and changes nothing.
@@ -472,7 +478,7 @@ test('Mirror copies the selected frame across x = 0, welded at the seam: the sav
 });
 
 test('Ctrl+A pressed while an undo is reloading selects the frames of the model the undo restores', async ({ page, studio }) => {
-  await newTopView(page, studio, 'grid', 'race.json', 3, 1);
+  await newModelInView(page, studio, 'grid', 'race.json', 3, 1);
   await page.keyboard.press('Control+a');
   await page.keyboard.press('s');
   await expect.poll(async () => (await model(studio)).frames.length).toBe(12);
@@ -508,15 +514,7 @@ async function dragHandleTo(page: Page, v: number, to: Point): Promise<void> {
 const between = (a: Point, b: Point, t: number): Point => ({ x: a.x + t * (b.x - a.x), y: a.y + t * (b.y - a.y) });
 
 test('snapping drags to a vertex and to a frame edge: the saved file has the vertex exactly there', async ({ page, studio }) => {
-  await openStudio(page, studio);
-  await newModel(page, 'grid', 'snap-to.json', 3, 1);
-  // Two frames apart (the middle one deleted): x from 0 to 1 and from 2 to 3.
-  expect(await hook<string>(page, 'edit', { op: 'delete-frames', frames: [1] })).toBe('');
-  await page.reload();
-  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
-  await page.getByTestId('view-top').click();
-  await page.waitForTimeout(400);
-  const m = await model(studio);
+  const m = await twoIslands(page, studio, 'snap-to.json');
   const [left, right] = m.frames.map((f: { vertices: number[] }) => f.vertices);
 
   // Vertices: the right frame's P1 dropped a few pixels off the left frame's P3 lands on it.
@@ -545,10 +543,7 @@ test('snapping drags to a vertex and to a frame edge: the saved file has the ver
 });
 
 test('snapping a drag onto the surface: the vertex lands on the patch under the pointer, not in the plane facing the camera', async ({ page, studio }) => {
-  await openStudio(page, studio);
-  await newModel(page, 'grid', 'snap-surface.json', 2, 1);
-  await page.getByTestId('view-iso').click();
-  await page.waitForTimeout(400);
+  await newModelInView(page, studio, 'grid', 'snap-surface.json', 2, 1, 'iso');
   const m = await model(studio);
   const [left, right] = m.frames.map((f: { vertices: number[] }) => f.vertices);
   await page.getByTestId('snap-to').selectOption('surface');
@@ -567,10 +562,7 @@ test('snapping a drag onto the surface: the vertex lands on the patch under the 
 });
 
 test('a distance typed during a drag moves exactly that far: along a locked axis, or along the drag; Enter applies', async ({ page, studio }) => {
-  await openStudio(page, studio);
-  await newModel(page, 'single', 'typed.json');
-  await page.getByTestId('view-top').click();
-  await page.waitForTimeout(400);
+  await newModelInView(page, studio, 'single', 'typed.json');
   const m = await model(studio);
   const v = m.frames[0].vertices[4]; // P5, the corner (1, 1, 0)
   const typedDrag = async (dx: number, dy: number, keys: string[]) => {
@@ -603,10 +595,7 @@ test('a distance typed during a drag moves exactly that far: along a locked axis
 });
 
 test('loop and ring select (Alt+L, Alt+R) take the row and the column of frames through the picked one: moves typed on them land in the saved file', async ({ page, studio }) => {
-  await openStudio(page, studio);
-  await newModel(page, 'tube', 'strips.json', 4, 3);
-  await page.getByTestId('view-front').click();
-  await page.waitForTimeout(400);
+  await newModelInView(page, studio, 'tube', 'strips.json', 4, 3, 'front');
   const m = await model(studio);
   const used = (frames: number[]) => new Set<number>(frames.flatMap((f) => m.frames[f].vertices));
   const moveBy = async (d: string[]) => {
