@@ -624,3 +624,38 @@ test('loop and ring select (Alt+L, Alt+R) take the row and the column of frames 
   });
   expect((await studio.state()).undo).toBe(2);
 });
+
+test('symmetry through the model\'s centre: a drag and a typed move of the selection each move the partner mirrored across it', async ({ page, studio }) => {
+  await newModelInView(page, studio, 'grid', 'centre-mirror.json', 2, 1);
+  // x from 0 to 2: the centre plane is x = 1 (not the origin's x = 0).
+  const m = await model(studio);
+  await page.getByTestId('symmetry').selectOption('cx');
+  const find = (x: number, y: number) => m.vertices.findIndex((p: number[]) => Math.abs(p[0] - x) < ROUNDING && Math.abs(p[1] - y) < ROUNDING);
+  const [corner, partner, top, topPartner] = [find(0, 0), find(2, 0), find(0, 1), find(2, 1)];
+  // The corner (0, 0) dragged: its partner (2, 0) follows mirrored across x = 1.
+  const p = await hook<Point>(page, 'vertexScreen', corner);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + 25, p.y + 20, { steps: 4 });
+  await page.mouse.up();
+  await settle(page);
+  // The corner (0, 1) picked and moved by dx = 1/4 in the panel: its partner by -1/4.
+  const q = await hook<Point>(page, 'vertexScreen', top);
+  await page.mouse.click(q.x, q.y);
+  for (const [a, d] of [['x', '1/4'], ['y', '0'], ['z', '0']]) await page.getByTestId(`offset-${a}`).fill(d);
+  await page.getByTestId('offset-apply').click();
+  await expect.poll(async () => (await studio.state()).undo).toBe(2);
+  await page.screenshot({ path: shot('designer-symmetry-centre.png') });
+  const file = await saved(page, studio, 'centre-mirror.json');
+  const c = file.vertices[corner], cp = file.vertices[partner];
+  expect(c[0]).toBeGreaterThan(0.05);
+  expect(Math.abs(cp[0] - (2 - c[0]))).toBeLessThan(ROUNDING);
+  expect(Math.abs(cp[1] - c[1])).toBeLessThan(ROUNDING);
+  expect(Math.abs(cp[2] - c[2])).toBeLessThan(ROUNDING);
+  expect(close(file.vertices[top], [0.25, 1, 0])).toBe(true);
+  expect(close(file.vertices[topPartner], [1.75, 1, 0])).toBe(true);
+  // The middle column stays on the plane x = 1; the rest where it was.
+  file.vertices.forEach((r: number[], v: number) => {
+    if (![corner, partner, top, topPartner].includes(v)) expect(r).toEqual(m.vertices[v]);
+  });
+});

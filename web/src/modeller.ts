@@ -18,6 +18,7 @@ import type { Studio } from './studio';
 import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, selectStrip, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
+import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
 import type { DragTool } from './drag';
 
 /** The modeller's tools, for the browser tests (test-hooks.ts). */
@@ -156,9 +157,13 @@ export function mountModeller(
       const model = store.state.model;
       const vertices = selectionVertices(studio);
       if (!model || !vertices.length) throw new Error(`${what}: select vertices or frames first`);
-      const positions = place(vertices.map((v) => model.vertices[v]));
-      if (!positions) return;
-      const status = await api.edit({ op: 'move-vertices', vertices, positions });
+      const from = vertices.map((v) => model.vertices[v]);
+      const to = place(from);
+      if (!to) return;
+      // With symmetry on, the partners across the plane follow mirrored (symmetry.ts).
+      const plane = symmetryPlane($<HTMLSelectElement>('symmetry').value, model.vertices);
+      const edit = plane ? symmetricMove(plane, mirrorPartners(model.vertices, vertices, from, plane), vertices, to) : { vertices, positions: to };
+      const status = await api.edit({ op: 'move-vertices', ...edit });
       store.update(['status'], (s) => (s.status = status));
       await studio.reloadAll();
     });

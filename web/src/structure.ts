@@ -79,6 +79,7 @@ export function framesEdit(op: 'delete-frames' | 'flip-frames', frames: Readonly
 
 /** Copies the selected frames across the plane `axis` = 0 (the panel's symmetry plane). */
 export function mirrorEdit(selected: ReadonlySet<number>, axis: string): Made {
+  if (axis.startsWith('c')) return { problem: `Mirror: copies across x = 0, y = 0 or z = 0 only; the plane through the model's centre is for symmetric edits` };
   if (axis !== 'x' && axis !== 'y' && axis !== 'z') return { problem: 'Mirror: choose the symmetry plane in the panel first' };
   if (!selected.size) return { problem: 'Mirror: select frames first' };
   return { edit: { op: 'mirror-frames', frames: [...selected].sort((a, b) => a - b), axis } };
