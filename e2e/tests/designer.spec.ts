@@ -21,6 +21,12 @@ const ON_AXIS = 1e-9;
 /** The top view's camera leans this far toward -y (VIEW_DIRECTIONS in web/src/viewport.ts): a
  * drag in the plane facing it rises by at most this fraction of its length. */
 const TOP_VIEW_TILT = 1e-4;
+/** The effect arrow is the panel's formula applied to the file's numbers (rounding only). */
+const ARROW_ROUNDING = 1e-9;
+/** The surface under a force moves by the formula's amount at the region's middle (the
+ * particular solution is added to the rest): the arrow's tail (the tip, on the surface, less
+ * the formula) stays put as f0 changes, to rounding (a fraction of the move). */
+const FORCE_EFFECT_MATCH = 1e-9;
 
 type Point = { x: number; y: number };
 const hook = <T>(page: Page, name: string, ...args: unknown[]) =>
@@ -657,5 +663,46 @@ test('symmetry through the model\'s centre: a drag and a typed move of the selec
   // The middle column stays on the plane x = 1; the rest where it was.
   file.vertices.forEach((r: number[], v: number) => {
     if (![corner, partner, top, topPartner].includes(v)) expect(r).toEqual(m.vertices[v]);
+  });
+});
+
+test.describe('a force\'s effect', () => {
+  test.use({ example: 'sculpt.json' });
+  test('is previewed where f0 is set: the panel says how far its middle moves, the arrow on the surface ends there, and the surface moves that far', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    await clickPatch(page, 0);
+    await expect(page.getByTestId('force-0')).toBeVisible();
+    const force = (await model(studio)).frames[0].forces[0];
+    const [lu, lv] = [force.region[1] - force.region[0], force.region[3] - force.region[2]];
+    /** The seed's particular solution at the region's middle (a1 = a2 = 1 in the example). */
+    const expected = (f0z: number) => -f0z / (Math.PI * Math.PI * (1 / (lu * lu) + 1 / (lv * lv)));
+    type Arrow = { from: number[]; to: number[] } | null;
+    const arrow = () => hook<Arrow>(page, 'forceEffect');
+    const setF0z = async (text: string, value: number) => {
+      await page.getByTestId('f0-z-value').fill(text);
+      await page.getByTestId('f0-z-value').press('Enter');
+      await expect.poll(async () => (await model(studio)).frames[0].forces[0].f0[2]).toBe(value);
+      await settle(page);
+    };
+    // f0.z = 0: no arrow, the panel says the region does not move.
+    await setF0z('0', 0);
+    await expect(page.getByTestId('force-effect')).toHaveText('f0 is 0: the region does not move');
+    await expect.poll(arrow).toBeNull();
+    // f0.z = 40: toward -z by 40 / (pi^2 (1/Lu^2 + 1/Lv^2)), said and drawn.
+    await setF0z('40', 40);
+    const d = expected(40);
+    await expect(page.getByTestId('force-effect')).toContainText('mostly toward −z');
+    await expect(page.getByTestId('force-effect')).toContainText(`${Math.abs(d).toPrecision(3)} long`);
+    await expect.poll(async () => (await arrow()) !== null).toBe(true);
+    const a = (await arrow())!;
+    expect(Math.abs(a.to[2] - a.from[2] - d)).toBeLessThan(ARROW_ROUNDING);
+    expect(Math.abs(a.to[0] - a.from[0])).toBeLessThan(ARROW_ROUNDING);
+    await page.screenshot({ path: shot('designer-force-effect.png') });
+    // The arrow's tail is where the middle is without the force: at half the force the tip
+    // (on the surface) moved half as far, and the tail stayed.
+    await setF0z('20', 20);
+    await expect.poll(async () => Math.abs((await arrow())?.to[2] ?? 0) > 0 && (await arrow())!.to[2] !== a.to[2]).toBe(true);
+    const half = (await arrow())!;
+    half.from.forEach((x, i) => expect(Math.abs(x - a.from[i])).toBeLessThan(FORCE_EFFECT_MATCH * Math.abs(d)));
   });
 });
