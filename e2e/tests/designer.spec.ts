@@ -706,3 +706,41 @@ test.describe('a force\'s effect', () => {
     half.from.forEach((x, i) => expect(Math.abs(x - a.from[i])).toBeLessThan(FORCE_EFFECT_MATCH * Math.abs(d)));
   });
 });
+
+test('the pivot: each piece scaled about its own centre, then all turned about the active vertex', async ({ page, studio }) => {
+  const m = await twoIslands(page, studio, 'pivot.json');
+  const islands = m.frames.map((f: { vertices: number[] }) => new Set<number>(f.vertices));
+  await page.keyboard.press('Control+a');
+  await expect.poll(async () => (await selected(page)).length).toBe(m.vertices.length);
+  // Each piece's centre: the islands double about (0.5, 0.5, 0) and (2.5, 0.5, 0).
+  await page.getByTestId('selection-pivot').selectOption('pieces');
+  await page.getByTestId('selection-scale').fill('2');
+  await page.getByTestId('selection-scale-apply').click();
+  await expect.poll(async () => (await studio.state()).undo).toBe(2);
+  await settle(page);
+  const scaled = m.vertices.map((p: number[], v: number) => {
+    const c = islands[0].has(v) ? [0.5, 0.5, 0] : [2.5, 0.5, 0];
+    return p.map((x, i) => c[i] + 2 * (x - c[i]));
+  });
+  // The active vertex: the right island's far corner (3, 1), now (3.5, 1.5), picked last
+  // (shift+click takes it out of the selection, again puts it back last; the near corners of
+  // the islands now stand at one place); a quarter turn of all about it.
+  const corner = m.frames[1].vertices[4];
+  const q = await hook<Point>(page, 'vertexScreen', corner);
+  await page.keyboard.down('Shift');
+  await page.mouse.click(q.x, q.y);
+  await page.mouse.click(q.x, q.y);
+  await page.keyboard.up('Shift');
+  await expect.poll(async () => (await selected(page)).at(-1)).toBe(corner);
+  expect((await selected(page)).length).toBe(m.vertices.length);
+  await page.getByTestId('selection-pivot').selectOption('active');
+  await page.getByTestId('selection-degrees').fill('90');
+  await page.getByTestId('selection-rotate-apply').click();
+  await expect.poll(async () => (await studio.state()).undo).toBe(3);
+  await settle(page);
+  await page.getByTestId('fit-all').click();
+  await page.waitForTimeout(400);
+  await page.screenshot({ path: shot('designer-pivot.png') });
+  const file = await saved(page, studio, 'pivot.json');
+  scaled.forEach((p: number[], v: number) => expect(close(file.vertices[v], turned(p, scaled[corner], 90))).toBe(true));
+});

@@ -13,7 +13,8 @@ import type { ForcesTool } from './forces-tool';
 import { mountGizmo, selectionVertices } from './gizmo';
 import type { Gizmo } from './gizmo';
 import { modelBox } from './viewport';
-import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
+import { pivotsOf, rotatedAbout, scaledAbout, selectionPieces } from './selection-transform';
+import type { Pivot } from './selection-transform';
 import type { Studio } from './studio';
 import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, selectStrip, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
@@ -178,16 +179,23 @@ export function mountModeller(
       return points.map((p) => p.map((x, i) => x + d[i]!) as Vec3);
     }),
   );
+  /** Each selected vertex's pivot, as the panel's *pivot* says (selection-transform.ts). */
+  const pivots = (points: Vec3[]) => {
+    const model = store.state.model!;
+    const active = store.state.selectedVertex;
+    const pieces = selectionPieces(selectionVertices(studio), model.frames);
+    return pivotsOf(points, $<HTMLSelectElement>('selection-pivot').value as Pivot, pieces, active === null ? null : model.vertices[active]);
+  };
   actions.scaleSelection = () =>
     moveSelection('Scale', (points) => {
       const factor = numberIn('selection-scale', { label: 'scale factor', min: 0, nonZero: true });
-      return factor === null ? null : scaledAbout(points, boxCentre(points), factor);
+      return factor === null ? null : pivots(points).map((c, i) => scaledAbout([points[i]], c, factor)[0]);
     });
   actions.rotateSelection = () =>
     moveSelection('Rotate', (points) => {
       const degrees = numberIn('selection-degrees', { label: 'degrees' });
       const axis = $<HTMLSelectElement>('selection-axis').value as 'x' | 'y' | 'z';
-      return degrees === null ? null : rotatedAbout(points, boxCentre(points), axis, degrees);
+      return degrees === null ? null : pivots(points).map((c, i) => rotatedAbout([points[i]], c, axis, degrees)[0]);
     });
   $('selection-scale-apply').addEventListener('click', actions.scaleSelection);
   $('selection-rotate-apply').addEventListener('click', actions.rotateSelection);
