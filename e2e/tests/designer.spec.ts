@@ -4,7 +4,9 @@
 // that leaves no vertex unused, and a point drag of a marching chain told about before it is
 // made and turned into the global chain; and the designer tools, each checked in the saved
 // file: selections and typed moves, axis lock and snap, drags in the shaded view, Delete on the
-// selection, Split on several frames or all, symmetric drags and Mirror.
+// selection, Split on several frames or all, symmetric drags and Mirror, drags snapped to
+// vertices, frame edges and the surface, a distance typed during a drag; and Ctrl+A pressed
+// while an undo reloads.
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
@@ -16,6 +18,15 @@ import type { Studio } from './fixture';
 const ROUNDING = 1e-9;
 /** A preset's camera looks along its axis to rounding (no damping left over from an orbit). */
 const ON_AXIS = 1e-9;
+/** The top view's camera leans this far toward -y (VIEW_DIRECTIONS in web/src/viewport.ts): a
+ * drag in the plane facing it rises by at most this fraction of its length. */
+const TOP_VIEW_TILT = 1e-4;
+/** The effect arrow is the panel's formula applied to the file's numbers (rounding only). */
+const ARROW_ROUNDING = 1e-9;
+/** The surface under a force moves by the formula's amount at the region's middle (the
+ * particular solution is added to the rest): the arrow's tail (the tip, on the surface, less
+ * the formula) stays put as f0 changes, to rounding (a fraction of the move). */
+const FORCE_EFFECT_MATCH = 1e-9;
 
 type Point = { x: number; y: number };
 const hook = <T>(page: Page, name: string, ...args: unknown[]) =>
@@ -195,16 +206,22 @@ test.describe('a marching chain', () => {
   });
 });
 
-test('select linked, invert, all, with moves typed as expressions: the saved file has the numbers', async ({ page, studio }) => {
+/** Opens the studio on a new row of 3 frames (New…) less its middle one: two islands, x from
+ * 0 to 1 and from 2 to 3, seen from the top; their model. */
+async function twoIslands(page: Page, studio: Studio, file: string) {
   await openStudio(page, studio);
-  await newModel(page, 'grid', 'islands.json', 3, 1);
-  // Two islands: frame 0, and the old frame 2 (the middle one deleted).
+  await newModel(page, 'grid', file, 3, 1);
   expect(await hook<string>(page, 'edit', { op: 'delete-frames', frames: [1] })).toBe('');
   await page.reload();
   await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
   await page.getByTestId('view-top').click();
   await page.waitForTimeout(400);
-  const m = await model(studio);
+  return model(studio);
+}
+
+test('select linked, invert, all, with moves typed as expressions: the saved file has the numbers', async ({ page, studio }) => {
+  // Two islands: frame 0, and the old frame 2 (the middle one deleted).
+  const m = await twoIslands(page, studio, 'islands.json');
   const island0 = [...new Set<number>(m.frames[0].vertices)];
   const island1 = [...new Set<number>(m.frames[1].vertices)];
   const p = await hook<Point>(page, 'vertexScreen', m.frames[0].vertices[1]);
@@ -302,11 +319,11 @@ test('a vertex dragged in the shaded surface view moves as its handle would: one
   expect(cameras.surface.direction[2]).toBeGreaterThan(0.999);
 });
 
-/** Opens the studio on a new model (New…) seen from the top. */
-async function newTopView(page: Page, studio: Studio, kind: string, file: string, u = 1, v = 1): Promise<void> {
+/** Opens the studio on a new model (New…) seen from `view` (the top by default). */
+async function newModelInView(page: Page, studio: Studio, kind: string, file: string, u = 1, v = 1, view = 'top'): Promise<void> {
   await openStudio(page, studio);
   await newModel(page, kind, file, u, v);
-  await page.getByTestId('view-top').click();
+  await page.getByTestId(`view-${view}`).click();
   await page.waitForTimeout(400);
 }
 
@@ -329,7 +346,7 @@ async function saved(page: Page, studio: Studio, name: string) {
 }
 
 test('Delete deletes the selected frames in one undo step; Shift+Delete removes a force instead', async ({ page, studio }) => {
-  await newTopView(page, studio, 'grid', 'delete.json', 3, 1);
+  await newModelInView(page, studio, 'grid', 'delete.json', 3, 1);
   const m = await model(studio);
   await clickPatch(page, 0);
   await clickPatch(page, 2, true);
@@ -363,7 +380,7 @@ function onLattice(file: { vertices: number[][]; frames: { vertices: number[] }[
 }
 
 test('Split 4 on several frames, then on all: shared edges stay shared, no vertex unused, one undo step each', async ({ page, studio }) => {
-  await newTopView(page, studio, 'grid', 'subdivide.json', 3, 1);
+  await newModelInView(page, studio, 'grid', 'subdivide.json', 3, 1);
   // Frames 0 and 2 into 2 × 2: the cut across v runs on through frame 1, which becomes 2.
   await clickPatch(page, 0);
   await clickPatch(page, 2, true);
@@ -438,7 +455,7 @@ test('symmetry across x = 0: a drag moves the mirror partner mirrored and keeps 
 });
 
 test('Mirror copies the selected frame across x = 0, welded at the seam: the saved file has the mirror image', async ({ page, studio }) => {
-  await newTopView(page, studio, 'single', 'mirror-frames.json');
+  await newModelInView(page, studio, 'single', 'mirror-frames.json');
   const m = await model(studio);
   await clickPatch(page, 0);
   // Without a plane chosen, Mirror says what to do and changes nothing.
@@ -464,4 +481,266 @@ test('Mirror copies the selected frame across x = 0, welded at the seam: the sav
   // The two frames share one side: the seam's three vertices.
   const [a, b] = file.frames.map((f: { vertices: number[] }) => new Set(f.vertices));
   expect([...a].filter((v) => b.has(v)).sort()).toEqual(m.vertices.flatMap((q: number[], v: number) => (q[0] === 0 ? [v] : [])).sort());
+});
+
+test('Ctrl+A pressed while an undo is reloading selects the frames of the model the undo restores', async ({ page, studio }) => {
+  await newModelInView(page, studio, 'grid', 'race.json', 3, 1);
+  await page.keyboard.press('Control+a');
+  await page.keyboard.press('s');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(12);
+  await settle(page);
+  // The undo answered late (a loaded machine): Ctrl+A comes while it is in flight. It waits
+  // for the undo's reload, as the toolbar's actions do, and selects the 3 frames it restores
+  // (before, it selected the 12 frames of the split model, which the reload then cleared).
+  await page.route('**/api/undo', async (route) => {
+    await new Promise((r) => setTimeout(r, 600));
+    await route.continue();
+  });
+  await page.keyboard.press('Control+z');
+  await page.keyboard.press('Control+a');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(3);
+  await expect.poll(async () => [...(await hook<{ frames: number[] }>(page, 'selection')).frames].sort()).toEqual([0, 1, 2]);
+  await page.keyboard.press('s');
+  await expect.poll(async () => (await model(studio)).frames.length).toBe(12);
+  expect((await studio.state()).undo).toBe(1);
+});
+
+/** Presses vertex `v`'s handle in the frame view, moves the pointer to `to` (client pixels)
+ * in steps, and releases it; the page's edits answered. */
+async function dragHandleTo(page: Page, v: number, to: Point): Promise<void> {
+  const p = await hook<Point>(page, 'vertexScreen', v);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(to.x, to.y, { steps: 6 });
+  await page.mouse.up();
+  await settle(page);
+}
+
+/** The client point a fraction `t` of the way from a to b. */
+const between = (a: Point, b: Point, t: number): Point => ({ x: a.x + t * (b.x - a.x), y: a.y + t * (b.y - a.y) });
+
+test('snapping drags to a vertex and to a frame edge: the saved file has the vertex exactly there', async ({ page, studio }) => {
+  const m = await twoIslands(page, studio, 'snap-to.json');
+  const [left, right] = m.frames.map((f: { vertices: number[] }) => f.vertices);
+
+  // Vertices: the right frame's P1 dropped a few pixels off the left frame's P3 lands on it.
+  await page.getByTestId('snap-to').selectOption('vertices');
+  const target = await hook<Point>(page, 'vertexScreen', left[2]);
+  await dragHandleTo(page, right[0], { x: target.x + 4, y: target.y - 3 });
+  // Frame edges: its P7 dropped 4 px right of the left frame's side x = 1 (between P4 and P5)
+  // lands on that side.
+  await page.getByTestId('snap-to').selectOption('edges');
+  const side = between(await hook<Point>(page, 'vertexScreen', left[3]), await hook<Point>(page, 'vertexScreen', left[4]), 0.4);
+  await dragHandleTo(page, right[6], { x: side.x + 4, y: side.y });
+  await page.screenshot({ path: shot('designer-snap-edge.png') });
+
+  const file = await saved(page, studio, 'snap-to.json');
+  expect(file.vertices[right[0]]).toEqual(m.vertices[left[2]]);
+  const [x, y, z] = file.vertices[right[6]];
+  expect(Math.abs(x - 1)).toBeLessThan(ROUNDING);
+  expect(y).toBeGreaterThan(0.5);
+  expect(y).toBeLessThan(1);
+  expect(Math.abs(z)).toBeLessThan(ROUNDING);
+  // Nothing else moved; one undo step per drag (after the delete).
+  file.vertices.forEach((p: number[], v: number) => {
+    if (v !== right[0] && v !== right[6]) expect(p).toEqual(m.vertices[v]);
+  });
+  expect((await studio.state()).undo).toBe(3);
+});
+
+test('snapping a drag onto the surface: the vertex lands on the patch under the pointer, not in the plane facing the camera', async ({ page, studio }) => {
+  await newModelInView(page, studio, 'grid', 'snap-surface.json', 2, 1, 'iso');
+  const m = await model(studio);
+  const [left, right] = m.frames.map((f: { vertices: number[] }) => f.vertices);
+  await page.getByTestId('snap-to').selectOption('surface');
+  // The right frame's far corner dropped on the middle of the left frame's diagonal (P1 to P5,
+  // on the plane z = 0).
+  const to = between(await hook<Point>(page, 'vertexScreen', left[0]), await hook<Point>(page, 'vertexScreen', left[4]), 0.5);
+  await dragHandleTo(page, right[4], to);
+  await page.screenshot({ path: shot('designer-snap-surface.png') });
+  const file = await saved(page, studio, 'snap-surface.json');
+  const [x, y, z] = file.vertices[right[4]];
+  expect(Math.abs(z)).toBeLessThan(ROUNDING); // on the surface z = 0
+  expect(x).toBeGreaterThan(0.2);
+  expect(x).toBeLessThan(0.8);
+  expect(Math.abs(x - y)).toBeLessThan(0.05); // on the diagonal, to a pixel or so
+  expect((await studio.state()).undo).toBe(1);
+});
+
+test('a distance typed during a drag moves exactly that far: along a locked axis, or along the drag; Enter applies', async ({ page, studio }) => {
+  await newModelInView(page, studio, 'single', 'typed.json');
+  const m = await model(studio);
+  const v = m.frames[0].vertices[4]; // P5, the corner (1, 1, 0)
+  const typedDrag = async (dx: number, dy: number, keys: string[]) => {
+    const p = await hook<Point>(page, 'vertexScreen', v);
+    await page.mouse.move(p.x, p.y);
+    await page.mouse.down();
+    await page.mouse.move(p.x + dx, p.y + dy, { steps: 4 });
+    for (const k of keys) await page.keyboard.press(k);
+    await page.mouse.move(p.x + 2 * dx, p.y, { steps: 3 }); // after Enter: no effect
+    await page.mouse.up();
+    await settle(page);
+  };
+  // Along x (X locks it), -3/8 typed: x - 0.375 exactly.
+  await typedDrag(-40, 5, ['x', '-', '3', '/', '8', 'Enter']);
+  await expect(page.getByTestId('status')).toContainText('drag: distance -3/8');
+  await page.screenshot({ path: shot('designer-typed-distance.png') });
+  let file = await saved(page, studio, 'typed.json');
+  expect(file.vertices[v]).toEqual([0.625, 1, 0]);
+  // Free, up and to the left on screen (top view: -x, +y), 0.55 typed then one digit taken
+  // back: 0.5 along the drag's direction.
+  await typedDrag(-30, -30, ['0', '.', '5', '5', 'Backspace', 'Enter']);
+  file = await saved(page, studio, 'typed.json');
+  const d = file.vertices[v].map((c: number, i: number) => c - [0.625, 1, 0][i]);
+  expect(Math.abs(Math.hypot(d[0], d[1], d[2]) - 0.5)).toBeLessThan(ROUNDING);
+  expect(d[0]).toBeLessThan(-0.2);
+  expect(d[1]).toBeGreaterThan(0.2);
+  // The top view leans 1e-4 toward -y (viewport.ts), so its facing plane climbs that much.
+  expect(Math.abs(d[2])).toBeLessThan(TOP_VIEW_TILT * 0.5);
+  expect((await studio.state()).undo).toBe(2);
+});
+
+test('loop and ring select (Alt+L, Alt+R) take the row and the column of frames through the picked one: moves typed on them land in the saved file', async ({ page, studio }) => {
+  await newModelInView(page, studio, 'tube', 'strips.json', 4, 3, 'front');
+  const m = await model(studio);
+  const used = (frames: number[]) => new Set<number>(frames.flatMap((f) => m.frames[f].vertices));
+  const moveBy = async (d: string[]) => {
+    for (const [i, a] of ['x', 'y', 'z'].entries()) await page.getByTestId(`offset-${a}`).fill(d[i]);
+    await page.getByTestId('offset-apply').click();
+    await settle(page);
+    await page.locator('body').click({ position: { x: 5, y: 5 } }); // keys are keys again
+  };
+  // Frame 6: the middle row's frame facing the camera. Its loop: the middle row round the tube.
+  await clickPatch(page, 6);
+  await page.keyboard.press('Alt+l');
+  await expect.poll(async () => (await hook<{ frames: number[] }>(page, 'selection')).frames).toEqual([4, 5, 6, 7]);
+  await moveBy(['0', '0', '1/2']);
+  await page.keyboard.press('Escape');
+  // Its ring: the column of frames up the tube.
+  await clickPatch(page, 6);
+  await page.keyboard.press('Alt+r');
+  await expect.poll(async () => (await hook<{ frames: number[] }>(page, 'selection')).frames).toEqual([2, 6, 10]);
+  await moveBy(['1/4', '0', '0']);
+  await page.screenshot({ path: shot('designer-loop-ring.png') });
+  const file = await saved(page, studio, 'strips.json');
+  const loop = used([4, 5, 6, 7]), ring = used([2, 6, 10]);
+  m.vertices.forEach((p: number[], v: number) => {
+    const expected = [p[0] + (ring.has(v) ? 0.25 : 0), p[1], p[2] + (loop.has(v) ? 0.5 : 0)];
+    expect(close(file.vertices[v], expected)).toBe(true);
+  });
+  expect((await studio.state()).undo).toBe(2);
+});
+
+test('symmetry through the model\'s centre: a drag and a typed move of the selection each move the partner mirrored across it', async ({ page, studio }) => {
+  await newModelInView(page, studio, 'grid', 'centre-mirror.json', 2, 1);
+  // x from 0 to 2: the centre plane is x = 1 (not the origin's x = 0).
+  const m = await model(studio);
+  await page.getByTestId('symmetry').selectOption('cx');
+  const find = (x: number, y: number) => m.vertices.findIndex((p: number[]) => Math.abs(p[0] - x) < ROUNDING && Math.abs(p[1] - y) < ROUNDING);
+  const [corner, partner, top, topPartner] = [find(0, 0), find(2, 0), find(0, 1), find(2, 1)];
+  // The corner (0, 0) dragged: its partner (2, 0) follows mirrored across x = 1.
+  const p = await hook<Point>(page, 'vertexScreen', corner);
+  await page.mouse.move(p.x, p.y);
+  await page.mouse.down();
+  await page.mouse.move(p.x + 25, p.y + 20, { steps: 4 });
+  await page.mouse.up();
+  await settle(page);
+  // The corner (0, 1) picked and moved by dx = 1/4 in the panel: its partner by -1/4.
+  const q = await hook<Point>(page, 'vertexScreen', top);
+  await page.mouse.click(q.x, q.y);
+  for (const [a, d] of [['x', '1/4'], ['y', '0'], ['z', '0']]) await page.getByTestId(`offset-${a}`).fill(d);
+  await page.getByTestId('offset-apply').click();
+  await expect.poll(async () => (await studio.state()).undo).toBe(2);
+  await page.screenshot({ path: shot('designer-symmetry-centre.png') });
+  const file = await saved(page, studio, 'centre-mirror.json');
+  const c = file.vertices[corner], cp = file.vertices[partner];
+  expect(c[0]).toBeGreaterThan(0.05);
+  expect(Math.abs(cp[0] - (2 - c[0]))).toBeLessThan(ROUNDING);
+  expect(Math.abs(cp[1] - c[1])).toBeLessThan(ROUNDING);
+  expect(Math.abs(cp[2] - c[2])).toBeLessThan(ROUNDING);
+  expect(close(file.vertices[top], [0.25, 1, 0])).toBe(true);
+  expect(close(file.vertices[topPartner], [1.75, 1, 0])).toBe(true);
+  // The middle column stays on the plane x = 1; the rest where it was.
+  file.vertices.forEach((r: number[], v: number) => {
+    if (![corner, partner, top, topPartner].includes(v)) expect(r).toEqual(m.vertices[v]);
+  });
+});
+
+test.describe('a force\'s effect', () => {
+  test.use({ example: 'sculpt.json' });
+  test('is previewed where f0 is set: the panel says how far its middle moves, the arrow on the surface ends there, and the surface moves that far', async ({ page, studio }) => {
+    await openStudio(page, studio);
+    await clickPatch(page, 0);
+    await expect(page.getByTestId('force-0')).toBeVisible();
+    const force = (await model(studio)).frames[0].forces[0];
+    const [lu, lv] = [force.region[1] - force.region[0], force.region[3] - force.region[2]];
+    /** The seed's particular solution at the region's middle (a1 = a2 = 1 in the example). */
+    const expected = (f0z: number) => -f0z / (Math.PI * Math.PI * (1 / (lu * lu) + 1 / (lv * lv)));
+    type Arrow = { from: number[]; to: number[] } | null;
+    const arrow = () => hook<Arrow>(page, 'forceEffect');
+    const setF0z = async (text: string, value: number) => {
+      await page.getByTestId('f0-z-value').fill(text);
+      await page.getByTestId('f0-z-value').press('Enter');
+      await expect.poll(async () => (await model(studio)).frames[0].forces[0].f0[2]).toBe(value);
+      await settle(page);
+    };
+    // f0.z = 0: no arrow, the panel says the region does not move.
+    await setF0z('0', 0);
+    await expect(page.getByTestId('force-effect')).toHaveText('f0 is 0: the region does not move');
+    await expect.poll(arrow).toBeNull();
+    // f0.z = 40: toward -z by 40 / (pi^2 (1/Lu^2 + 1/Lv^2)), said and drawn.
+    await setF0z('40', 40);
+    const d = expected(40);
+    await expect(page.getByTestId('force-effect')).toContainText('mostly toward −z');
+    await expect(page.getByTestId('force-effect')).toContainText(`${Math.abs(d).toPrecision(3)} long`);
+    await expect.poll(async () => (await arrow()) !== null).toBe(true);
+    const a = (await arrow())!;
+    expect(Math.abs(a.to[2] - a.from[2] - d)).toBeLessThan(ARROW_ROUNDING);
+    expect(Math.abs(a.to[0] - a.from[0])).toBeLessThan(ARROW_ROUNDING);
+    await page.screenshot({ path: shot('designer-force-effect.png') });
+    // The arrow's tail is where the middle is without the force: at half the force the tip
+    // (on the surface) moved half as far, and the tail stayed.
+    await setF0z('20', 20);
+    await expect.poll(async () => Math.abs((await arrow())?.to[2] ?? 0) > 0 && (await arrow())!.to[2] !== a.to[2]).toBe(true);
+    const half = (await arrow())!;
+    half.from.forEach((x, i) => expect(Math.abs(x - a.from[i])).toBeLessThan(FORCE_EFFECT_MATCH * Math.abs(d)));
+  });
+});
+
+test('the pivot: each piece scaled about its own centre, then all turned about the active vertex', async ({ page, studio }) => {
+  const m = await twoIslands(page, studio, 'pivot.json');
+  const islands = m.frames.map((f: { vertices: number[] }) => new Set<number>(f.vertices));
+  await page.keyboard.press('Control+a');
+  await expect.poll(async () => (await selected(page)).length).toBe(m.vertices.length);
+  // Each piece's centre: the islands double about (0.5, 0.5, 0) and (2.5, 0.5, 0).
+  await page.getByTestId('selection-pivot').selectOption('pieces');
+  await page.getByTestId('selection-scale').fill('2');
+  await page.getByTestId('selection-scale-apply').click();
+  await expect.poll(async () => (await studio.state()).undo).toBe(2);
+  await settle(page);
+  const scaled = m.vertices.map((p: number[], v: number) => {
+    const c = islands[0].has(v) ? [0.5, 0.5, 0] : [2.5, 0.5, 0];
+    return p.map((x, i) => c[i] + 2 * (x - c[i]));
+  });
+  // The active vertex: the right island's far corner (3, 1), now (3.5, 1.5), picked last
+  // (shift+click takes it out of the selection, again puts it back last; the near corners of
+  // the islands now stand at one place); a quarter turn of all about it.
+  const corner = m.frames[1].vertices[4];
+  const q = await hook<Point>(page, 'vertexScreen', corner);
+  await page.keyboard.down('Shift');
+  await page.mouse.click(q.x, q.y);
+  await page.mouse.click(q.x, q.y);
+  await page.keyboard.up('Shift');
+  await expect.poll(async () => (await selected(page)).at(-1)).toBe(corner);
+  expect((await selected(page)).length).toBe(m.vertices.length);
+  await page.getByTestId('selection-pivot').selectOption('active');
+  await page.getByTestId('selection-degrees').fill('90');
+  await page.getByTestId('selection-rotate-apply').click();
+  await expect.poll(async () => (await studio.state()).undo).toBe(3);
+  await settle(page);
+  await page.getByTestId('fit-all').click();
+  await page.waitForTimeout(400);
+  await page.screenshot({ path: shot('designer-pivot.png') });
+  const file = await saved(page, studio, 'pivot.json');
+  scaled.forEach((p: number[], v: number) => expect(close(file.vertices[v], turned(p, scaled[corner], 90))).toBe(true));
 });

@@ -11,11 +11,16 @@ import type { Topic } from './store';
 import type { Studio } from './studio';
 import type { Viewport } from './viewport';
 import { coincidentWith, toggled, toggledInStack } from './structure';
+import { nearestOnSegments, nearestVertex, onSurface, outlineSegments, surfaceSnapshot, TYPED_CHARACTERS, typedOffset } from './snap';
+import type { SnapMode } from './snap';
+import type * as THREE from 'three';
+import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
+import type { MirrorPlane } from './symmetry';
 
 /** Puts each vertex of `moved` at its start `from[i]` offset by `d` in the store (one update,
  * announcing `topics`), and moves the frame view's handles of those but `skip` (a handle the
- * store's 'vertex' subscriber moves itself). Shared by the handle drag and the move gizmo. */
-export function offsetVertices(
+ * store's 'vertex' subscriber moves itself). */
+function offsetVertices(
   studio: Studio,
   moved: readonly number[],
   from: readonly Vec3[],
@@ -28,52 +33,12 @@ export function offsetVertices(
 
 /** Puts each vertex `moved[i]` at `at(i)` in the store (one update, announcing `topics`) and
  * moves the frame view's handles of those but `skip`. */
-function placeVertices(studio: Studio, moved: readonly number[], at: (i: number) => Vec3, topics: Topic[], skip: number | null): void {
+export function placeVertices(studio: Studio, moved: readonly number[], at: (i: number) => Vec3, topics: Topic[], skip: number | null): void {
   const { store, frameView } = studio;
   store.update(topics, (s) => {
     moved.forEach((v, i) => (s.model!.vertices[v] = at(i)));
   });
   for (const v of moved) if (v !== skip) frameView.moveVertex(v, store.state.model!.vertices[v]);
-}
-
-/** A vertex is on the mirror plane, or at the mirrored place of another, within this fraction
- * of the model's bounding-box diagonal (a model built symmetric to rounding, or by typed
- * numbers, is well inside; a designer's freehand model may need its halves snapped first). */
-export const MIRROR_TOLERANCE = 1e-6;
-
-/** Symmetry: for the vertices `moved` (at `from`), which of them lie on the plane where
- * coordinate `axis` is 0 (they stay on it), and their mirror partners not among them (each the
- * vertex nearest the mirrored place, within MIRROR_TOLERANCE of the diagonal). Computed once
- * per drag, at its start (a drag's steps only add the mirrored offset). */
-export function mirrorPartners(
-  vertices: readonly Vec3[],
-  moved: readonly number[],
-  from: readonly Vec3[],
-  axis: 0 | 1 | 2,
-): { onPlane: boolean[]; partners: number[]; partnerFrom: Vec3[] } {
-  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (const p of vertices) for (let c = 0; c < 3; ++c) (lo[c] = Math.min(lo[c], p[c])), (hi[c] = Math.max(hi[c], p[c]));
-  const tolerance = MIRROR_TOLERANCE * Math.max(Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]), 1e-300);
-  const taken = new Set(moved);
-  const onPlane = from.map((p) => Math.abs(p[axis]) <= tolerance);
-  const partners: number[] = [];
-  const partnerFrom: Vec3[] = [];
-  from.forEach((p, i) => {
-    if (onPlane[i]) return;
-    const m: Vec3 = [p[0], p[1], p[2]];
-    m[axis] = -m[axis];
-    let best = -1, bestDistance = tolerance;
-    vertices.forEach((q, v) => {
-      const dist = Math.hypot(q[0] - m[0], q[1] - m[1], q[2] - m[2]);
-      if (dist <= bestDistance) (best = v), (bestDistance = dist);
-    });
-    if (best >= 0 && !taken.has(best)) {
-      taken.add(best);
-      partners.push(best);
-      partnerFrom.push([...vertices[best]] as Vec3);
-    }
-  });
-  return { onPlane, partners, partnerFrom };
 }
 
 /** An offset with each coordinate rounded to a multiple of `step` (0: as it is). */
@@ -115,8 +80,16 @@ export function mountDragTool(studio: Studio): DragTool {
     at?: { x: number; y: number };
     /** The view the drag is in (its camera's plane). */
     view: Viewport;
-    /** Symmetry on: the mirror plane's axis, and what mirrorPartners found at the start. */
-    mirror: ({ axis: 0 | 1 | 2 } & ReturnType<typeof mirrorPartners>) | null;
+    /** Symmetry on: the mirror plane, and what mirrorPartners found at the start. */
+    mirror: { plane: MirrorPlane; found: ReturnType<typeof mirrorPartners> } | null;
+    /** What the drag snaps to, taken at its start (what does not move with it). */
+    snap:
+      | { mode: 'vertices'; candidates: number[] }
+      | { mode: 'edges'; segments: [number, number][] }
+      | { mode: 'surface'; surface: THREE.Mesh }
+      | null;
+    /** The distance typed during the drag (as typed), or '' (the pointer places it). */
+    typed: string;
   } | null = null;
   let press: { x: number; y: number; shift: boolean; ctrl: boolean } | null = null;
   let box: { x: number; y: number; pointer: number; remove: boolean; div: HTMLDivElement } | null = null;
@@ -136,9 +109,9 @@ export function mountDragTool(studio: Studio): DragTool {
       const moved = current.includes(vertex) && current.length > 1 ? [...current] : [vertex];
       if (moved.length === 1) selectVertices([vertex]);
       const from = moved.map((v) => [...model.vertices[v]] as Vec3);
-      const axis = symmetryAxis();
-      const mirror = axis === null ? null : { axis, ...mirrorPartners(model.vertices, moved, from, axis) };
-      drag = { vertex, pointer: ev.pointerId, moved, from, axis: null, view, mirror };
+      const plane = symmetryPlane($<HTMLSelectElement>('symmetry').value, model.vertices);
+      const mirror = plane && { plane, found: mirrorPartners(model.vertices, moved, from, plane) };
+      drag = { vertex, pointer: ev.pointerId, moved, from, axis: null, view, mirror, snap: snapTargets(new Set([...moved, ...(mirror?.found.partners ?? [])])), typed: '' };
       studio.beginGesture('drag');
       ev.preventDefault();
     },
@@ -210,27 +183,63 @@ export function mountDragTool(studio: Studio): DragTool {
     tool.move(ev);
   });
 
+  /** What a drag that moves `moving` snaps to: the panel's *snap drags to*, and the vertices,
+   * outline segments or surface (as it is now) that stay put. */
+  function snapTargets(moving: ReadonlySet<number>): NonNullable<typeof drag>['snap'] {
+    const model = store.state.model!;
+    const mode = $<HTMLSelectElement>('snap-to').value as SnapMode;
+    if (mode === 'vertices') return { mode, candidates: model.vertices.map((_, v) => v).filter((v) => !moving.has(v)) };
+    if (mode === 'edges') return { mode, segments: outlineSegments(model.frames, moving) };
+    const mesh = store.state.mesh;
+    if (mode === 'surface' && mesh) return { mode, surface: surfaceSnapshot(mesh.positions, mesh.indices) };
+    return null;
+  }
+
+  /** The point the grabbed vertex snaps to for the pointer at (x, y), or null (none near). */
+  function snapPoint(x: number, y: number): Vec3 | null {
+    const snap = drag?.snap;
+    if (!drag || !snap) return null;
+    const vertices = store.state.model!.vertices;
+    if (snap.mode === 'vertices') {
+      const v = nearestVertex(vertices, snap.candidates, drag.view, x, y);
+      return v === null ? null : ([...vertices[v]] as Vec3);
+    }
+    if (snap.mode === 'edges') return nearestOnSegments(vertices, snap.segments, drag.view, x, y);
+    return onSurface(snap.surface, drag.view, x, y);
+  }
+
   /** Moves the dragged vertices for the pointer at (x, y): in the plane facing the camera, or
    * along the locked axis (the point of the axis through the start nearest the pointer's
-   * ray), the offset rounded to the grid step when one is set. */
+   * ray). A typed distance sets the offset's length (along the axis, or the pointer's
+   * direction); else a snap target near the pointer (free drags) places the grabbed vertex
+   * on it; else the offset is rounded to the grid step when one is set. */
   function dragTo(x: number, y: number): void {
     if (!drag) return;
     const { vertex, moved, from } = drag;
     const start = from[moved.indexOf(vertex)];
     const target = drag.axis === null ? drag.view.dragTarget(start, x, y) : drag.view.axisTarget(start, drag.axis, x, y);
     if (!target) return;
-    const d = snapped([target[0] - start[0], target[1] - start[1], target[2] - start[2]], snapStep());
+    const free: [number, number, number] = [target[0] - start[0], target[1] - start[1], target[2] - start[2]];
+    const typed = drag.typed ? evaluateExpression(drag.typed) : null;
+    const snap = typed === null && drag.axis === null ? snapPoint(x, y) : null;
+    const d =
+      typed !== null && Number.isFinite(typed)
+        ? typedOffset(typed, drag.axis, free)
+        : snap
+          ? ([snap[0] - start[0], snap[1] - start[1], snap[2] - start[2]] as [number, number, number])
+          : snapped(free, snapStep());
+    if (!d) return;
     const skip = store.state.selectedVertex;
     const mirror = drag.mirror;
     let all = moved;
     if (!mirror) {
       offsetVertices(studio, moved, from, d, ['vertex'], skip);
     } else {
-      // Symmetry: vertices on the plane keep their coordinate across it, partners move mirrored.
-      const shifted = (p: Vec3, across: number): Vec3 => [0, 1, 2].map((c) => p[c] + (c === mirror.axis ? across * d[c] : d[c])) as Vec3;
-      all = [...moved, ...mirror.partners];
-      const n = moved.length;
-      placeVertices(studio, all, (i) => (i < n ? shifted(from[i], mirror.onPlane[i] ? 0 : 1) : shifted(mirror.partnerFrom[i - n], -1)), ['vertex'], skip);
+      // Symmetry: vertices on the plane stay on it, partners go to the mirror images.
+      const to = from.map((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]] as Vec3);
+      const move = symmetricMove(mirror.plane, mirror.found, moved, to);
+      all = move.vertices;
+      placeVertices(studio, all, (i) => move.positions[i], ['vertex'], skip);
     }
     const position = (v: number) => [...store.state.model!.vertices[v]] as Vec3;
     pump.push(() =>
@@ -240,31 +249,34 @@ export function mountDragTool(studio: Studio): DragTool {
     );
   }
 
-  /** The panel's Symmetry choice: the axis across the mirror plane through the origin, or null
-   * (off). */
-  const symmetryAxis = (): 0 | 1 | 2 | null => {
-    const k = ['x', 'y', 'z'].indexOf($<HTMLSelectElement>('symmetry').value);
-    return k < 0 ? null : (k as 0 | 1 | 2);
-  };
-
   /** The grid step of the panel's Snap box; 0 (off) when empty or not a number above 0. */
   const snapStep = () => {
     const step = evaluateExpression($<HTMLInputElement>('snap-step').value.trim());
     return step !== null && step > 0 && Number.isFinite(step) ? step : 0;
   };
 
-  // X, Y or Z during a drag locks it to that axis (again: free again), as in Blender; the
-  // key is the drag's, not the shortcut's (taken before keys.ts sees it).
+  // During a drag, as in Blender (the keys are the drag's, not the shortcuts': taken before
+  // keys.ts sees them): X, Y or Z locks it to that axis (again: free again); a number typed
+  // sets the distance (Backspace edits it), Enter applies it and ends the drag.
   document.addEventListener(
     'keydown',
     (ev) => {
+      if (!drag || ev.ctrlKey || ev.metaKey || ev.altKey) return;
       const k = ['x', 'y', 'z'].indexOf(ev.key.toLowerCase());
-      if (!drag || k < 0 || ev.ctrlKey || ev.metaKey || ev.altKey) return;
+      const typing = TYPED_CHARACTERS.test(ev.key) || (ev.key === 'Backspace' && drag.typed !== '');
+      if (k < 0 && !typing && ev.key !== 'Enter') return;
       ev.preventDefault();
       ev.stopImmediatePropagation();
-      drag.axis = drag.axis === k ? null : (k as 0 | 1 | 2);
-      studio.say(drag.axis === null ? 'drag: free' : `drag: along ${'xyz'[drag.axis]} only`);
+      if (k >= 0) {
+        drag.axis = drag.axis === k ? null : (k as 0 | 1 | 2);
+        studio.say(drag.axis === null ? 'drag: free' : `drag: along ${'xyz'[drag.axis]} only`);
+      } else if (typing) {
+        drag.typed = ev.key === 'Backspace' ? drag.typed.slice(0, -1) : drag.typed + ev.key;
+        const value = evaluateExpression(drag.typed);
+        studio.say(drag.typed ? `drag: distance ${drag.typed}${value === null ? ' (not a number yet)' : ''}; Enter applies` : 'drag: free');
+      }
       if (drag.at) dragTo(drag.at.x, drag.at.y);
+      if (ev.key === 'Enter') void tool.end({ pointerId: drag.pointer } as PointerEvent);
     },
     true,
   );

@@ -9,7 +9,7 @@ import * as THREE from 'three';
 import { api } from './api';
 import type { FrameForce, Region, Vec3 } from './api';
 import { $ } from './dom';
-import { moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from './regions';
+import { forceDisplacement, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from './regions';
 import type { UV } from './regions';
 import type { Studio } from './studio';
 import type { SurfacePicker } from './surface-pick';
@@ -25,6 +25,9 @@ const MAX_OUTLINED_FRAMES = 16;
 const REGION_COLOR = new THREE.Color(0x7b2cbf);
 const SELECTED_COLOR = new THREE.Color(0xee6c4d);
 const SHARED_COLOR = new THREE.Color(0x2a9d3f);
+/** The selected force's effect arrow: dark red, its head this fraction of its length. */
+const EFFECT_COLOR = 0xb5179e;
+const EFFECT_HEAD = 0.25;
 
 /** Handles: the selected region's corners 0..3 (regionCorners' order), then its centre. */
 export const CENTRE_HANDLE = 4;
@@ -33,6 +36,9 @@ export interface ForcesTool {
   toggleDraw(): void;
   /** The client point of a handle of the selected force (tests). */
   handleScreen(handle: number): { x: number; y: number } | null;
+  /** The effect arrow of the selected force (world points: its tail and its tip, the region's
+   * middle on the surface), or null while none is shown. */
+  effect(): { from: Vec3; to: Vec3 } | null;
   /** The outlines drawn: each one's frame and region (tests). */
   drawn(): { frame: number; region: Region }[];
   /** The client point of (u, v) on frame `frame`'s patch (tests). */
@@ -80,7 +86,13 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
   );
   handles.renderOrder = 5;
   handles.frustumCulled = false;
-  surfaceView.scene.add(lines, handles);
+  // The selected force's effect: an arrow from where its region's middle would be without it
+  // to where it is (forceDisplacement), redrawn as its f0 sliders move.
+  const effect = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, EFFECT_COLOR);
+  effect.visible = false;
+  effect.renderOrder = 5;
+  for (const part of [effect.line, effect.cone]) (part.material as THREE.Material).depthTest = false;
+  surfaceView.scene.add(lines, handles, effect);
 
   let drawing = false;
   const button = $<HTMLButtonElement>('draw-force');
@@ -172,9 +184,24 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
     handlePoints = selected ? points.get(selected.frame)!.slice(handleFirst, handleFirst + 5).map((q) => new THREE.Vector3(...q)) : [];
     handleOf = selected;
     handles.geometry.setAttribute('position', new THREE.Float32BufferAttribute(handlePoints.flatMap((q) => q.toArray()), 3));
+    showEffect(selected);
     surfaceView.invalidate();
   }
   store.subscribe(['model', 'selection', 'forces', 'mesh'], () => void redraw());
+
+  /** The effect arrow of the selected force, ending at its region's middle on the surface. */
+  function showEffect(selected: { frame: number; force: number } | null): void {
+    const frame = selected && store.state.model?.frames[selected.frame];
+    const force = frame?.forces?.[selected!.force];
+    const d = force ? forceDisplacement(force.f0, frame!.a1 ?? [1, 1, 1], frame!.a2 ?? [1, 1, 1], force.region ?? [0, 1, 0, 1]) : null;
+    const along = d ? new THREE.Vector3(...d) : null;
+    const length = along?.length() ?? 0;
+    effect.visible = !!along && handlePoints.length === 5 && length > 0 && Number.isFinite(length);
+    if (!effect.visible) return;
+    effect.position.copy(handlePoints[4]).sub(along!);
+    effect.setDirection(along!.normalize());
+    effect.setLength(length, EFFECT_HEAD * length, EFFECT_HEAD * length * 0.6);
+  }
 
   /** The handle of the selected force under a client point, if any. */
   function handleAt(x: number, y: number): number | null {
@@ -293,6 +320,12 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
   return {
     toggleDraw,
     drawn: () => drawn,
+    effect: () => {
+      if (!effect.visible) return null;
+      const from = effect.position.toArray() as Vec3;
+      const tip = effect.position.clone().addScaledVector(new THREE.Vector3(0, 1, 0).applyQuaternion(effect.quaternion), effect.cone.position.y);
+      return { from, to: tip.toArray() as Vec3 };
+    },
     handleScreen(h) {
       const p = handlePoints[h];
       if (!p) return null;

@@ -7,7 +7,10 @@
 import * as THREE from 'three';
 import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import type { Vec3 } from './api';
-import { offsetVertices } from './drag';
+import { placeVertices } from './drag';
+import { $ } from './dom';
+import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
+import type { MirrorPlane } from './symmetry';
 import { boxCentre } from './selection-transform';
 import type { Studio } from './studio';
 
@@ -59,8 +62,9 @@ export function mountGizmo(studio: Studio): Gizmo {
   let on = false;
   const toggleBox = document.querySelector<HTMLInputElement>('[data-testid="gizmo"]');
 
-  /** A drag of the vertex selection: the vertices it moves and where they started. */
-  let drag: { moved: number[]; from: Vec3[] } | null = null;
+  /** A drag of the vertex selection: the vertices it moves, where they started, and with
+   * symmetry on the plane and the mirror partners found at the start. */
+  let drag: { moved: number[]; from: Vec3[]; mirror: { plane: MirrorPlane; found: ReturnType<typeof mirrorPartners> } | null } | null = null;
 
   /** The vertex selection as the gizmo's subject. */
   const vertexSubject: GizmoSubject = {
@@ -72,15 +76,18 @@ export function mountGizmo(studio: Studio): Gizmo {
     begin: () => {
       const model = store.state.model!;
       const moved = selectionVertices(studio);
-      drag = { moved, from: moved.map((v) => [...model.vertices[v]] as Vec3) };
+      const from = moved.map((v) => [...model.vertices[v]] as Vec3);
+      const plane = symmetryPlane($<HTMLSelectElement>('symmetry').value, model.vertices);
+      drag = { moved, from, mirror: plane && { plane, found: mirrorPartners(model.vertices, moved, from, plane) } };
       studio.beginGesture('gizmo');
     },
     move: (d) => {
       if (!drag || !store.state.model) return;
-      const { moved, from } = drag;
-      offsetVertices(studio, moved, from, d, []);
-      const positions = moved.map((v) => [...store.state.model!.vertices[v]] as Vec3);
-      pump.push(() => ({ op: 'move-vertices', vertices: moved, positions }));
+      const { moved, from, mirror } = drag;
+      const to = from.map((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]] as Vec3);
+      const { vertices, positions } = mirror ? symmetricMove(mirror.plane, mirror.found, moved, to) : { vertices: moved, positions: to };
+      placeVertices(studio, vertices, (i) => positions[i], [], null);
+      pump.push(() => ({ op: 'move-vertices', vertices, positions }));
     },
     end: async () => {
       drag = null;

@@ -96,6 +96,9 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
       { keys: 'Ctrl+A', what: 'Select all: every frame and vertex', matches: (e) => ctrl(e) && !e.shiftKey && e.key.toLowerCase() === 'a', run: () => modeller.select('all') },
       { keys: 'Ctrl+I', what: 'Invert the selection', matches: (e) => ctrl(e) && e.key.toLowerCase() === 'i', run: () => modeller.select('inverse') },
       { keys: 'Ctrl+L', what: 'Select linked: every frame joined to the selection, with its vertices', matches: (e) => ctrl(e) && e.key.toLowerCase() === 'l', run: () => modeller.select('linked') },
+      // By the key's place (e.code): Alt+letter types another character on some layouts.
+      { keys: 'Alt+L', what: 'Loop select: the strip of frames through each selected frame along its u (across u = 0 and u = 1), round a tube too', matches: (e) => e.altKey && !ctrl(e) && e.code === 'KeyL', run: () => modeller.select('loop') },
+      { keys: 'Alt+R', what: 'Ring select: the strip of frames through each selected frame along its v (across v = 0 and v = 1)', matches: (e) => e.altKey && !ctrl(e) && e.code === 'KeyR', run: () => modeller.select('ring') },
     );
 
   // The help: one row per shortcut, and what the mouse does.

@@ -13,11 +13,13 @@ import type { ForcesTool } from './forces-tool';
 import { mountGizmo, selectionVertices } from './gizmo';
 import type { Gizmo } from './gizmo';
 import { modelBox } from './viewport';
-import { boxCentre, rotatedAbout, scaledAbout } from './selection-transform';
+import { pivotsOf, rotatedAbout, scaledAbout, selectionPieces } from './selection-transform';
+import type { Pivot } from './selection-transform';
 import type { Studio } from './studio';
-import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
+import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, selectStrip, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
+import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
 import type { DragTool } from './drag';
 
 /** The modeller's tools, for the browser tests (test-hooks.ts). */
@@ -43,8 +45,9 @@ export interface ModellerActions {
   scaleSelection(): void;
   rotateSelection(): void;
   toggleDrawForce(): void;
-  /** Select all, the inverse of the selection, or everything linked to it. */
-  select(how: 'all' | 'inverse' | 'linked'): void;
+  /** Select all, the inverse of the selection, everything linked to it, or the strips of
+   * frames through it along u (loop) or v (ring). */
+  select(how: 'all' | 'inverse' | 'linked' | 'loop' | 'ring'): void;
 }
 
 export function mountModeller(
@@ -84,23 +87,35 @@ export function mountModeller(
     scaleSelection: () => {},
     rotateSelection: () => {},
     toggleDrawForce: () => {},
-    select: (how) => {
-      const model = store.state.model;
-      if (!model) return;
-      const picked = { vertices: store.state.selectedVertices, frames: store.state.selectedFrames };
-      const next = how === 'all' ? selectAll(model) : how === 'inverse' ? selectInverse(model, picked) : selectLinked(model, picked);
-      store.update(['selection', 'forces'], (s) => {
-        s.selectedVertices = next.vertices;
-        s.selectedVertex = next.vertices.length ? next.vertices[next.vertices.length - 1] : null;
-        s.selectedFrames = next.frames;
-        s.selectedForce = 0;
-      });
-      studio.say(`${next.vertices.length} vertices, ${next.frames.size} frames selected`);
-    },
+    // Queued as the toolbar's actions are: Ctrl+A pressed while an undo's reload is in flight
+    // selects the frames of the model the undo restores, not those of the model it replaces.
+    select: (how) =>
+      void studio.run(async () => {
+        const model = store.state.model;
+        if (!model) return;
+        const picked = { vertices: store.state.selectedVertices, frames: store.state.selectedFrames };
+        const next =
+          how === 'all'
+            ? selectAll(model)
+            : how === 'inverse'
+              ? selectInverse(model, picked)
+              : how === 'linked'
+                ? selectLinked(model, picked)
+                : selectStrip(model, picked, how === 'loop' ? 'u' : 'v');
+        store.update(['selection', 'forces'], (s) => {
+          s.selectedVertices = next.vertices;
+          s.selectedVertex = next.vertices.length ? next.vertices[next.vertices.length - 1] : null;
+          s.selectedFrames = next.frames;
+          s.selectedForce = 0;
+        });
+        studio.say(`${next.vertices.length} vertices, ${next.frames.size} frames selected`);
+      }),
   };
   $('select-all').addEventListener('click', () => actions.select('all'));
   $('select-inverse').addEventListener('click', () => actions.select('inverse'));
   $('select-linked').addEventListener('click', () => actions.select('linked'));
+  $('select-loop').addEventListener('click', () => actions.select('loop'));
+  $('select-ring').addEventListener('click', () => actions.select('ring'));
   $('new-model').addEventListener('click', actions.newModel);
   $('extrude').addEventListener('click', actions.extrude);
   $('add-frame').addEventListener('click', actions.addFrame);
@@ -143,9 +158,13 @@ export function mountModeller(
       const model = store.state.model;
       const vertices = selectionVertices(studio);
       if (!model || !vertices.length) throw new Error(`${what}: select vertices or frames first`);
-      const positions = place(vertices.map((v) => model.vertices[v]));
-      if (!positions) return;
-      const status = await api.edit({ op: 'move-vertices', vertices, positions });
+      const from = vertices.map((v) => model.vertices[v]);
+      const to = place(from);
+      if (!to) return;
+      // With symmetry on, the partners across the plane follow mirrored (symmetry.ts).
+      const plane = symmetryPlane($<HTMLSelectElement>('symmetry').value, model.vertices);
+      const edit = plane ? symmetricMove(plane, mirrorPartners(model.vertices, vertices, from, plane), vertices, to) : { vertices, positions: to };
+      const status = await api.edit({ op: 'move-vertices', ...edit });
       store.update(['status'], (s) => (s.status = status));
       await studio.reloadAll();
     });
@@ -160,16 +179,23 @@ export function mountModeller(
       return points.map((p) => p.map((x, i) => x + d[i]!) as Vec3);
     }),
   );
+  /** Each selected vertex's pivot, as the panel's *pivot* says (selection-transform.ts). */
+  const pivots = (points: Vec3[]) => {
+    const model = store.state.model!;
+    const active = store.state.selectedVertex;
+    const pieces = selectionPieces(selectionVertices(studio), model.frames);
+    return pivotsOf(points, $<HTMLSelectElement>('selection-pivot').value as Pivot, pieces, active === null ? null : model.vertices[active]);
+  };
   actions.scaleSelection = () =>
     moveSelection('Scale', (points) => {
       const factor = numberIn('selection-scale', { label: 'scale factor', min: 0, nonZero: true });
-      return factor === null ? null : scaledAbout(points, boxCentre(points), factor);
+      return factor === null ? null : pivots(points).map((c, i) => scaledAbout([points[i]], c, factor)[0]);
     });
   actions.rotateSelection = () =>
     moveSelection('Rotate', (points) => {
       const degrees = numberIn('selection-degrees', { label: 'degrees' });
       const axis = $<HTMLSelectElement>('selection-axis').value as 'x' | 'y' | 'z';
-      return degrees === null ? null : rotatedAbout(points, boxCentre(points), axis, degrees);
+      return degrees === null ? null : pivots(points).map((c, i) => rotatedAbout([points[i]], c, axis, degrees)[0]);
     });
   $('selection-scale-apply').addEventListener('click', actions.scaleSelection);
   $('selection-rotate-apply').addEventListener('click', actions.rotateSelection);

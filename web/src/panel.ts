@@ -2,6 +2,7 @@
 // sliders of the selected frames, and their forces (regions, f0 sliders).
 import type { Edit, FrameForce, Model, Region, SharedForce, Vec3 } from './api';
 import { $, numberBox, readNumber } from './dom';
+import { forceDisplacement, forceEffectText } from './regions';
 import type { State } from './store';
 import type { Studio } from './studio';
 
@@ -202,6 +203,7 @@ export function mountPanel(studio: Studio): void {
             force.f0 = [...force.f0] as Vec3;
             force.f0[i] = value;
           });
+          renderForceEffect();
           const forces = structuredClone(frame.forces!);
           pump.push(() => ({ op: 'set-forces', frame: frames[0], forces }));
         } else if (frames.length > 1) {
@@ -240,6 +242,7 @@ export function mountPanel(studio: Studio): void {
     const model = state.model;
     const frames = selectedFrameList(state);
     $<HTMLButtonElement>('add-force').disabled = frames.length !== 1;
+    renderForceEffect();
     if (!model || frames.length === 0) {
       list.textContent = 'Select a frame to edit its forces.';
       list.className = 'forces muted';
@@ -321,6 +324,19 @@ export function mountPanel(studio: Studio): void {
     }
     const force = forces[selectedForce];
     forceRows.forEach((r, i) => r.set(force ? force.f0[i] : null));
+    renderForceEffect();
+  }
+
+  /** The selected force's effect in words, live as its sliders move (its arrow on the
+   * surface: forces-tool.ts); empty unless one frame's force is selected. */
+  function renderForceEffect(): void {
+    const state = store.state;
+    const frames = selectedFrameList(state);
+    const frame = frames.length === 1 ? state.model?.frames[frames[0]] : undefined;
+    const force = frame?.forces?.[Math.min(state.selectedForce, frame.forces.length - 1)];
+    $('force-effect').textContent = force
+      ? forceEffectText(forceDisplacement(force.f0, frame!.a1 ?? [1, 1, 1], frame!.a2 ?? [1, 1, 1], force.region ?? [0, 1, 0, 1]))
+      : '';
   }
 
   $('add-force').addEventListener('click', () => {

@@ -71,3 +71,26 @@ export function regionOutline(r: Region, perSide: number): UV[] {
   }
   return out;
 }
+
+/** How far a frame force moves its region's middle, per coordinate: the particular solution
+ * −f0 / (π² (a1/Lu² + a2/Lv²)) of the seed's PDE at the region's centre (Lu, Lv its sides in
+ * u and v; docs/vertex-frames.md). A coordinate where a1/Lu² + a2/Lv² is 0 has no solution:
+ * NaN there (the server refuses such a force). */
+export function forceDisplacement(f0: readonly number[], a1: readonly number[], a2: readonly number[], region: Region): [number, number, number] {
+  const lu = region[1] - region[0], lv = region[3] - region[2];
+  return [0, 1, 2].map((c) => {
+    const stiffness = Math.PI * Math.PI * (a1[c] / (lu * lu) + a2[c] / (lv * lv));
+    return f0[c] === 0 ? 0 : stiffness === 0 ? NaN : -f0[c] / stiffness;
+  }) as [number, number, number];
+}
+
+/** The force's effect in words, for the panel: how far and which way its region's middle
+ * moves. */
+export function forceEffectText(d: readonly number[]): string {
+  if (d.some((x) => Number.isNaN(x))) return 'no solution: a1/Lu² + a2/Lv² is 0 in a coordinate where f0 is not';
+  const length = Math.hypot(d[0], d[1], d[2]);
+  if (length === 0) return 'f0 is 0: the region does not move';
+  const fmt = (x: number) => (Math.abs(x) < 1e-12 ? '0' : x.toPrecision(3).replace(/\.?0+$/, '').replace(/\.?0+e/, 'e'));
+  const main = [0, 1, 2].reduce((a, c) => (Math.abs(d[c]) > Math.abs(d[a]) ? c : a), 0);
+  return `its middle moves by (${d.map(fmt).join(', ')}), ${fmt(length)} long, mostly toward ${d[main] < 0 ? '−' : '+'}${'xyz'[main]}`;
+}

@@ -38,3 +38,39 @@ export function rotatedAbout(points: readonly Vec3[], centre: Vec3, axis: 'x' | 
     return q;
   });
 }
+
+/** What the selection's scale and rotate turn about (the panel's *pivot*): the centre of the
+ * selection's box, each piece's own centre (Blender's individual origins), the active vertex
+ * (the last one picked), or the origin. */
+export type Pivot = 'centre' | 'pieces' | 'active' | 'origin';
+
+/** The pieces of a selection: its vertices (as indices into `vertices`) grouped by the piece
+ * of the model they lie on (frames joined through shared vertices are one piece, as select
+ * linked joins them); Blender's individual origins over islands. */
+export function selectionPieces(vertices: readonly number[], frames: readonly { vertices: readonly number[] }[]): number[][] {
+  const parent = new Map<number, number>();
+  const root = (v: number): number => {
+    const p = parent.get(v) ?? v;
+    if (p === v) return v;
+    const r = root(p);
+    parent.set(v, r);
+    return r;
+  };
+  for (const frame of frames) for (const v of frame.vertices.slice(1)) parent.set(root(v), root(frame.vertices[0]));
+  const pieces = new Map<number, number[]>();
+  vertices.forEach((v, i) => pieces.set(root(v), [...(pieces.get(root(v)) ?? []), i]));
+  return [...pieces.values()];
+}
+
+/** Each point's pivot: `pieces` groups the points (indices into `points`, selectionPieces);
+ * `active` is the active vertex's place (null: none, the selection's centre instead). */
+export function pivotsOf(points: readonly Vec3[], pivot: Pivot, pieces: readonly number[][], active: Vec3 | null): Vec3[] {
+  if (pivot === 'origin') return points.map(() => [0, 0, 0]);
+  if (pivot === 'active' && active) return points.map(() => active);
+  const out: Vec3[] = points.map(() => [0, 0, 0]);
+  for (const piece of pivot === 'pieces' ? pieces : [points.map((_, i) => i)]) {
+    const centre = boxCentre(piece.map((i) => points[i]));
+    for (const i of piece) out[i] = centre;
+  }
+  return out;
+}

@@ -79,6 +79,7 @@ export function framesEdit(op: 'delete-frames' | 'flip-frames', frames: Readonly
 
 /** Copies the selected frames across the plane `axis` = 0 (the panel's symmetry plane). */
 export function mirrorEdit(selected: ReadonlySet<number>, axis: string): Made {
+  if (axis.startsWith('c')) return { problem: `Mirror: copies across x = 0, y = 0 or z = 0 only; the plane through the model's centre is for symmetric edits` };
   if (axis !== 'x' && axis !== 'y' && axis !== 'z') return { problem: 'Mirror: choose the symmetry plane in the panel first' };
   if (!selected.size) return { problem: 'Mirror: select frames first' };
   return { edit: { op: 'mirror-frames', frames: [...selected].sort((a, b) => a - b), axis } };
@@ -165,6 +166,39 @@ export function selectLinked(model: Model, picked: Picked): Picked {
       for (const next of framesOf.get(v) ?? [])
         if (!reached.has(next)) reached.add(next), todo.push(next);
   }
+  const vertices = new Set<number>(picked.vertices);
+  for (const k of reached) for (const v of model.frames[k].vertices) vertices.add(v);
+  return { vertices: [...picked.vertices, ...[...vertices].filter((v) => !picked.vertices.includes(v)).sort((a, b) => a - b)], frames: reached };
+}
+
+/** The strips of frames through the selected frames (loop and ring select): from each, frame
+ * to frame across the sides u = 0 and u = 1 (`along` 'u': the loop) or v = 0 and v = 1 ('v':
+ * the ring), each neighbour left by the side opposite the one it was entered by (so a
+ * neighbour whose u runs another way continues the strip all the same), until a boundary or
+ * back at the start (round a tube); with all their vertices. */
+export function selectStrip(model: Model, picked: Picked, along: 'u' | 'v'): Picked {
+  const sidesOf = new Map<string, FrameSide[]>();
+  model.frames.forEach((frame, f) => {
+    for (let s = 0; s < 4; ++s) {
+      const key = sideKey(SIDE_SLOTS[s].map((i) => frame.vertices[i]));
+      sidesOf.set(key, [...(sidesOf.get(key) ?? []), { frame: f, side: s }]);
+    }
+  });
+  /** The frame across side `side` of frame `frame`, and the side it is entered by. */
+  const across = (frame: number, side: number): FrameSide | null => {
+    const key = sideKey(SIDE_SLOTS[side].map((i) => model.frames[frame].vertices[i]));
+    return sidesOf.get(key)?.find((o) => o.frame !== frame) ?? null;
+  };
+  const reached = new Set<number>(picked.frames);
+  const first = along === 'u' ? [1, 3] : [0, 2];
+  for (const start of picked.frames)
+    for (const side of first) {
+      let at: FrameSide | null = { frame: start, side };
+      while ((at = across(at.frame, at.side)) && !reached.has(at.frame)) {
+        reached.add(at.frame);
+        at = { frame: at.frame, side: (at.side + 2) % 4 };
+      }
+    }
   const vertices = new Set<number>(picked.vertices);
   for (const k of reached) for (const v of model.frames[k].vertices) vertices.add(v);
   return { vertices: [...picked.vertices, ...[...vertices].filter((v) => !picked.vertices.includes(v)).sort((a, b) => a - b)], frames: reached };

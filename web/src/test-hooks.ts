@@ -132,6 +132,8 @@ export function installTestHooks(studio: Studio): void {
     gizmoArrow: (axis: 'x' | 'y' | 'z') => modellerTools.gizmo?.arrowScreen(axis) ?? null,
     /** The client point of a handle of the selected force region (0..3 corners, 4 centre). */
     forceHandle: (h: number) => modellerTools.forces?.handleScreen(h) ?? null,
+    /** The selected force's effect arrow: tail and tip in world coordinates, or null. */
+    forceEffect: () => modellerTools.forces?.effect() ?? null,
     /** The force outlines drawn on the surface: frame and region of each. */
     forceOutlines: () => modellerTools.forces?.drawn() ?? [],
     /** The client point of (u, v) on frame `f`'s patch. */

@@ -1,6 +1,6 @@
 // Force regions drawn and changed by hand on a patch: always inside [0, 1]², never empty.
 import { describe, expect, it } from 'vitest';
-import { MIN_REGION, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from '../src/regions';
+import { forceDisplacement, forceEffectText, MIN_REGION, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from '../src/regions';
 
 describe('force regions from picked points', () => {
   it('spans the two picked points in either order', () => {
@@ -32,5 +32,24 @@ describe('force regions from picked points', () => {
   it('outlines the border counter-clockwise from (u0, v0)', () => {
     const o = regionOutline([0, 1, 0, 0.5], 2);
     expect(o).toEqual([[0, 0], [0.5, 0], [1, 0], [1, 0.25], [1, 0.5], [0.5, 0.5], [0, 0.5], [0, 0.25]]);
+  });
+});
+
+describe('forceDisplacement', () => {
+  it('is -f0 / (pi^2 (a1/Lu^2 + a2/Lv^2)) per coordinate: a positive f0.z dents toward -z', () => {
+    const d = forceDisplacement([0, 0, 2], [1, 1, 1], [1, 1, 1], [0.25, 0.75, 0.25, 0.75]);
+    expect(d[0]).toBe(0);
+    expect(d[1]).toBe(0);
+    expect(d[2]).toBeCloseTo(-2 / (Math.PI * Math.PI * 8), 14);
+    // A region half as wide in u: four times as stiff along u, so it moves less.
+    const narrow = forceDisplacement([0, 0, 2], [1, 1, 1], [1, 1, 1], [0.25, 0.5, 0.25, 0.75]);
+    expect(Math.abs(narrow[2])).toBeLessThan(Math.abs(d[2]));
+    expect(forceDisplacement([1, 0, 0], [0, 1, 1], [0, 1, 1], [0, 1, 0, 1])[0]).toBeNaN();
+  });
+
+  it('says how far and which way', () => {
+    expect(forceEffectText([0, 0, -0.025])).toBe('its middle moves by (0, 0, -0.025), 0.025 long, mostly toward −z');
+    expect(forceEffectText([0, 0, 0])).toBe('f0 is 0: the region does not move');
+    expect(forceEffectText([NaN, 0, 0])).toContain('no solution');
   });
 });

@@ -1,7 +1,7 @@
 // Scaling and turning the vertex selection about its centre.
 import { describe, expect, it } from 'vitest';
 import type { Vec3 } from '../src/api';
-import { boxCentre, rotatedAbout, scaledAbout } from '../src/selection-transform';
+import { boxCentre, pivotsOf, rotatedAbout, scaledAbout, selectionPieces } from '../src/selection-transform';
 
 /** Rounding of a few operations on numbers near 1. */
 const ROUNDING = 1e-12;
@@ -45,5 +45,24 @@ describe('selection transforms', () => {
     rotatedAbout(square, c, 'y', 33).forEach((p, i) => expect(Math.abs(d(p) - d(square[i]))).toBeLessThan(ROUNDING));
     // About y, z goes toward x.
     expect(rotatedAbout([[0, 0, 1]], [0, 0, 0], 'y', 90)[0]).toEqual([1, 0, 0]);
+  });
+});
+
+describe('pivots', () => {
+  // Two frames apart (vertices 0..3 of one, 4..7 of the other) and a third frame sharing
+  // vertex 7 with the second.
+  const frames = [{ vertices: [0, 1, 2, 3] }, { vertices: [4, 5, 6, 7] }, { vertices: [7, 8, 9, 10] }];
+  it('groups the selection into pieces joined through frames', () => {
+    expect(selectionPieces([0, 1, 4, 8], frames)).toEqual([[0, 1], [2, 3]]);
+    expect(selectionPieces([2, 9], frames)).toEqual([[0], [1]]);
+  });
+  it('gives each point its pivot: the box centre, the centre of its piece, the active vertex, the origin', () => {
+    const points: Vec3[] = [[0, 0, 0], [1, 2, 0], [4, 0, 0], [6, 2, 2]];
+    const pieces = [[0, 1], [2, 3]];
+    expect(pivotsOf(points, 'centre', pieces, null)).toEqual(points.map(() => [3, 1, 1]));
+    expect(pivotsOf(points, 'pieces', pieces, null)).toEqual([[0.5, 1, 0], [0.5, 1, 0], [5, 1, 1], [5, 1, 1]]);
+    expect(pivotsOf(points, 'active', pieces, [9, 9, 9])).toEqual(points.map(() => [9, 9, 9]));
+    expect(pivotsOf(points, 'active', pieces, null)).toEqual(points.map(() => [3, 1, 1]));
+    expect(pivotsOf(points, 'origin', pieces, null)).toEqual(points.map(() => [0, 0, 0]));
   });
 });

@@ -2,7 +2,7 @@
 // selection names, and what each tool asks for when the selection does not fit.
 import { describe, expect, it } from 'vitest';
 import type { Model } from '../src/api';
-import { addFrameEdit, boundarySides, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, selectedBoundarySides, splitEdit, toggled, toggledInStack, weldEdit } from '../src/structure';
+import { addFrameEdit, boundarySides, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, selectStrip, selectedBoundarySides, splitEdit, toggled, toggledInStack, weldEdit } from '../src/structure';
 
 /** Two frames side by side on a 5 × 3 lattice (vertex j * 5 + i), sharing the column i = 2. */
 function twoFrames(): Model {
@@ -89,5 +89,50 @@ describe('selection tools', () => {
     expect([...linked.frames].sort()).toEqual([0, 1]);
     expect(linked.vertices[0]).toBe(9); // the pick order kept first
     expect([...linked.vertices].sort((a, b) => a - b)).toEqual(Array.from({ length: 13 }, (_, i) => i));
+  });
+});
+
+/** A tube of `round` frames round z and `along` frames up it, on a lattice of 2 round × (2
+ * along + 1) points (vertex j * 2 round + i); frame (a, b) is frame b * round + a. With `flip`,
+ * frame 1 of each row has its u reversed (P1..P8 mirrored), as after Flip. */
+function tube(round: number, along: number, flip = false): Model {
+  const cols = 2 * round;
+  const vertices: [number, number, number][] = [];
+  for (let j = 0; j <= 2 * along; ++j)
+    for (let i = 0; i < cols; ++i) vertices.push([Math.cos((2 * Math.PI * i) / cols), Math.sin((2 * Math.PI * i) / cols), j]);
+  const at = (i: number, j: number) => j * cols + (i % cols);
+  const frames = [];
+  for (let b = 0; b < along; ++b)
+    for (let a = 0; a < round; ++a) {
+      const [i, j] = [2 * a, 2 * b];
+      let ring = [at(i, j), at(i + 1, j), at(i + 2, j), at(i + 2, j + 1), at(i + 2, j + 2), at(i + 1, j + 2), at(i, j + 2), at(i, j + 1)];
+      if (flip && a === 1) ring = [ring[2], ring[1], ring[0], ring[7], ring[6], ring[5], ring[4], ring[3]];
+      frames.push({ vertices: ring });
+    }
+  return { type: 'vertex-frames', vertices, frames };
+}
+
+describe('loop and ring select', () => {
+  it('loop: the row of frames round the tube through the selected frame; ring: its column', () => {
+    const m = tube(4, 3);
+    const sorted = (p: { frames: Set<number> }) => [...p.frames].sort((a, b) => a - b);
+    expect(sorted(selectStrip(m, { vertices: [], frames: new Set([5]) }, 'u'))).toEqual([4, 5, 6, 7]);
+    expect(sorted(selectStrip(m, { vertices: [], frames: new Set([5]) }, 'v'))).toEqual([1, 5, 9]);
+    // Two frames: both rows.
+    expect(sorted(selectStrip(m, { vertices: [], frames: new Set([0, 9]) }, 'u'))).toEqual([0, 1, 2, 3, 8, 9, 10, 11]);
+    // The vertices come with the frames: the middle row's 3 rows of lattice points less its
+    // 4 centres.
+    const loop = selectStrip(m, { vertices: [], frames: new Set([5]) }, 'u');
+    expect(loop.vertices).toHaveLength(3 * 8 - 4);
+  });
+
+  it('runs on through a frame whose u runs the other way, and stops at a boundary', () => {
+    const m = tube(4, 3, true);
+    const sorted = (p: { frames: Set<number> }) => [...p.frames].sort((a, b) => a - b);
+    expect(sorted(selectStrip(m, { vertices: [], frames: new Set([4]) }, 'u'))).toEqual([4, 5, 6, 7]);
+    expect(sorted(selectStrip(m, { vertices: [], frames: new Set([5]) }, 'v'))).toEqual([1, 5, 9]);
+    // A flat row of two frames: the strip ends at the sides no other frame shares.
+    expect(sorted(selectStrip(twoFrames(), { vertices: [], frames: new Set([0]) }, 'u'))).toEqual([0, 1]);
+    expect(sorted(selectStrip(twoFrames(), { vertices: [], frames: new Set([0]) }, 'v'))).toEqual([0]);
   });
 });
