@@ -23,10 +23,10 @@
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/model_io.hpp"
-#include "pdesurf/peers.hpp"
 #include "pdesurf/rebuild.hpp"
 #include "pdesurf/section_rebuild.hpp"
 #include "pdesurf/tube_layout.hpp"
+#include "peers.hpp"
 
 namespace pdesurf::python {
 
@@ -65,7 +65,7 @@ py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
                   arg("hausdorff_relative") = d.hausdorffRelative);
 }
 
-/// The polygon peer (include/pdesurf/peers.hpp): `truth` simplified to the fewest edges whose
+/// The polygon peer (apps/accuracy/peers.hpp): `truth` simplified to the fewest edges whose
 /// accuracy RMS (both ways, relative to the diagonal) is at most `target`.
 py::dict polygonPeer(const Mesh& truth, double target, std::size_t samples) {
   if (!(target >= 0.0) || !std::isfinite(target)) badArgument("target", "must be finite, >= 0");
