@@ -104,23 +104,43 @@ FitResult searchAutomaticLayout(const AutoLayoutArgs& args, const Mesh& mesh,
   o.resolution = resolution;
   o.onTrial = [&](std::uint32_t requested, const AutoFit& f) {
     if (quiet) return;
-    fmt::print("trial: {} asked for, {} made: model -> mesh RMS {}, mesh -> model RMS {} ({} {})\n",
-               count(requested, "frame"), f.layout.model.frames.size(),
-               percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
-               f.worseRms() <= o.targetRms ? "reaches" : "misses", percent(o.targetRms));
+    const bool rms = f.worseRms() <= o.targetRms;
+    const bool flat = f.normals.foldedArea <= o.maxFoldedArea;
+    fmt::print(
+        "trial: {} asked for, {} made{}: model -> mesh RMS {}, mesh -> model RMS {}, folded {} "
+        "({})\n",
+        count(requested, "frame"), f.layout.model.frames.size(),
+        f.foldsPrevented && !fit.preventFolds ? ", steps that fold more refused" : "",
+        percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
+        percent(f.normals.foldedArea),
+        rms && flat ? fmt::format("reaches {} within {} folded", percent(o.targetRms),
+                                  percent(o.maxFoldedArea))
+        : rms       ? fmt::format("reaches {} but folds more than {}", percent(o.targetRms),
+                                  percent(o.maxFoldedArea))
+                    : fmt::format("misses {}", percent(o.targetRms)));
   };
   TargetSearch s = searchTargetRms(mesh, o, meshPath);
   if (!quiet) {
+    const std::size_t frames = s.best.layout.model.frames.size();
     if (s.reached)
-      fmt::print("target RMS {} reached both ways with {} ({} tried): {}\n", percent(o.targetRms),
-                 count(s.best.layout.model.frames.size(), "frame"), count(s.trials, "layout"),
-                 madeLine(s.best.layout));
+      fmt::print(
+          "target RMS {} reached both ways within {} folded with {}{} ({} tried): {}\n",
+          percent(o.targetRms), percent(o.maxFoldedArea), count(frames, "frame"),
+          s.best.foldsPrevented && !fit.preventFolds ? " (steps that fold more refused)" : "",
+          count(s.trials, "layout"), madeLine(s.best.layout));
+    else if (s.rmsReached)
+      fmt::print(
+          "target RMS {} reached both ways, but every layout that reached it folds more than {} "
+          "({} tried, up to {}x the smallest that reached the RMS): the least folded, {}, "
+          "folds {}\n",
+          percent(o.targetRms), percent(o.maxFoldedArea), count(s.trials, "layout"),
+          kFoldGrowthLimit, count(frames, "frame"), percent(s.best.normals.foldedArea));
     else
       fmt::print(
           "target RMS {} NOT reached ({} tried; the layout grows no further): the closest, {}, "
           "has {} (worse way)\n",
-          percent(o.targetRms), count(s.trials, "layout"),
-          count(s.best.layout.model.frames.size(), "frame"), percent(s.best.worseRms()));
+          percent(o.targetRms), count(s.trials, "layout"), count(frames, "frame"),
+          percent(s.best.worseRms()));
   }
   const std::string name = layout.name;
   layout = std::move(s.best.layout.model);

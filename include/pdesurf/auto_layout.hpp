@@ -71,12 +71,29 @@ struct AutoFit {
   AutoLayout layout;
   FitResult fit;
   MeshDistance distance;  ///< the fitted model's tessellation against the mesh, both ways
+  /// The same tessellation's normals against the mesh's: folded area, RMS deviation.
+  NormalDeviation normals;
+  /// Fitted with FitOptions::preventFolds on (the target search's second try of a layout
+  /// whose plain fit folded).
+  bool foldsPrevented = false;
   /// The larger of the two one-way RMS values, relative to the diagonal.
   double worseRms() const;
 };
 
+/// The bound on a model's folded area (a share of its area, 0.1 %): the target
+/// search accepts no layout whose fitted model folds more.
+inline constexpr double kMaxFoldedArea = 1e-3;
+
+/// Where the smallest layout that reaches the target RMS folds more than the bound, the search
+/// grows the frame count up to this factor past it, then gives up the bound (the lion head at
+/// 0.2 %: 73 frames reach the RMS, about 350 the bound too).
+inline constexpr double kFoldGrowthLimit = 8.0;
+
 struct TargetSearchOptions {
   double targetRms = 0.002;  ///< both one-way RMS values at most this (of the diagonal)
+  /// ... and the folded share of the model's area at most this (AutoFit::normals; 1 or
+  /// more: no bound).
+  double maxFoldedArea = kMaxFoldedArea;
   AutoLayoutOptions layout;  ///< its `frames` is the first count tried
   /// The frame count grows by this factor until the target is reached, then is bisected
   /// until the counts that miss and reach it are within `precision` of each other.
@@ -91,8 +108,11 @@ struct TargetSearchOptions {
 };
 
 struct TargetSearch {
-  AutoFit best;  ///< the smallest trial that reached the target, else the closest one
-  bool reached = false;
+  /// The smallest trial that reached the target RMS within the fold bound; else the least
+  /// folded that reached the RMS; else the one of the lowest RMS.
+  AutoFit best;
+  bool reached = false;     ///< `best` reaches the target RMS within the fold bound
+  bool rmsReached = false;  ///< `best` reaches the target RMS (maybe folding more)
   std::uint32_t trials = 0;
 };
 
@@ -101,9 +121,16 @@ AutoFit fitAutoLayout(const Mesh& mesh, const AutoLayoutOptions& layout, const F
                       std::uint32_t resolution, const DistanceOptions& distance,
                       const std::string& source);
 
-/// The smallest automatic layout whose fitted model reaches the target both ways: the frame
-/// count grows geometrically from `options.layout.frames` until a fit reaches it (or the
-/// layout stops growing: the mesh is simplified no more), then is bisected.
+/// The smallest automatic layout whose fitted model reaches the target both ways and folds
+/// no more than `options.maxFoldedArea`. First the RMS alone: the frame count grows
+/// geometrically from `options.layout.frames` until a fit reaches it (or the layout stops
+/// growing: the mesh is simplified no more), or shrinks while fits reach it, then is bisected.
+/// Where the smallest layout that reaches the RMS folds more than the bound, it is fitted
+/// again with FitOptions::preventFolds, and the count grows from it by sqrt(growth) a step,
+/// up to kFoldGrowthLimit times it (each count that reaches the RMS folded also fitted with
+/// preventFolds), until a trial reaches both. Folds do not fall monotonically with the frame
+/// count, so the answer is the smallest trial that reaches both, not the smallest of all
+/// counts.
 TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& options,
                              const std::string& source);
 
