@@ -53,21 +53,12 @@ class SolvedBSplineSurface final
   }
 };
 
-class BSplinePdeMethod final : public MethodOf<BSplinePdeModel> {
+class BSplinePdeMethod final
+    : public OptionlessMethod<BSplinePdeModel, SolvedBSplinePde, SolvedBSplineSurface> {
  public:
-  const char* typeName() const override { return "bspline-pde"; }
-  AnyModel parse(const nlohmann::json& document, const std::string& source) const override {
-    return parseBSplinePdeDocument(document, source);
-  }
-  std::string serialize(const AnyModel& model) const override {
-    return serializeModel(model.get<BSplinePdeModel>());
-  }
-  std::shared_ptr<const SolvedSurface> solve(
-      const AnyModel& model, const std::string& source, const SolveOptions&,
-      const std::shared_ptr<const FrameTopology>&) const override {
-    return std::make_shared<const SolvedBSplineSurface>(
-        solveBSplineModel(model.get<BSplinePdeModel>(), source));
-  }
+  BSplinePdeMethod()
+      : OptionlessMethod("bspline-pde", parseBSplinePdeDocument, solveBSplineModel) {}
+
   ModelReport report(const SolvedModel& solved) const override {
     return bsplineReport(solved.surface().get<SolvedBSplinePde>());
   }

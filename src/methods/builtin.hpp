@@ -27,6 +27,36 @@ class MethodOf : public SurfaceMethod {
   }
 };
 
+/// A method whose model has its own document parser, writer (serializeModel) and solver
+/// that takes no options: spectral, cross-sections, B-spline PDE. `Surface` is the
+/// SolvedSurfaceOf<Solved> the solve returns.
+template <class Model, class Solved, class Surface>
+class OptionlessMethod : public MethodOf<Model> {
+ public:
+  using Parse = Model (*)(const nlohmann::json&, const std::string&);
+  using Solve = Solved (*)(const Model&, const std::string&);
+  OptionlessMethod(const char* type, Parse parse, Solve solve)
+      : type_(type), parse_(parse), solve_(solve) {}
+
+  const char* typeName() const override { return type_; }
+  AnyModel parse(const nlohmann::json& document, const std::string& source) const override {
+    return parse_(document, source);
+  }
+  std::string serialize(const AnyModel& model) const override {
+    return serializeModel(model.template get<Model>());
+  }
+  std::shared_ptr<const SolvedSurface> solve(
+      const AnyModel& model, const std::string& source, const SolveOptions&,
+      const std::shared_ptr<const FrameTopology>&) const override {
+    return std::make_shared<const Surface>(solve_(model.template get<Model>(), source));
+  }
+
+ private:
+  const char* type_;
+  Parse parse_;
+  Solve solve_;
+};
+
 /// points[j*n+i] = f(i, j): a patch's samples.
 template <class F>
 std::vector<Vec3> sampleGrid(std::uint32_t n, F&& f) {

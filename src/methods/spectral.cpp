@@ -84,24 +84,12 @@ class SolvedSpectralSurface final : public SolvedSurfaceOf<SolvedSpectral> {
 /// "spectral" (SpectralModel) and "cross-sections" (CrossSectionModel): the same solved
 /// surface and reports.
 template <class Model>
-class SpectralMethod final : public MethodOf<Model> {
+class SpectralMethod final : public OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface> {
  public:
-  using Parse = Model (*)(const Json&, const std::string&);
-  SpectralMethod(const char* type, Parse parse) : type_(type), parse_(parse) {}
+  using Base = OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface>;
+  SpectralMethod(const char* type, typename Base::Parse parse)
+      : Base(type, parse, solveSpectralModel) {}
 
-  const char* typeName() const override { return type_; }
-  AnyModel parse(const nlohmann::json& document, const std::string& source) const override {
-    return parse_(document, source);
-  }
-  std::string serialize(const AnyModel& model) const override {
-    return serializeModel(model.get<Model>());
-  }
-  std::shared_ptr<const SolvedSurface> solve(
-      const AnyModel& model, const std::string& source, const SolveOptions&,
-      const std::shared_ptr<const FrameTopology>&) const override {
-    return std::make_shared<const SolvedSpectralSurface>(
-        solveSpectralModel(model.get<Model>(), source));
-  }
   ModelReport report(const SolvedModel& solved) const override {
     return spectralReport(solved.surface().get<SolvedSpectral>());
   }
@@ -109,10 +97,6 @@ class SpectralMethod final : public MethodOf<Model> {
     return spectralInfo(solved.surface().get<SolvedSpectral>(), solved.source(),
                         this->name(solved.model()), json);
   }
-
- private:
-  const char* type_;
-  Parse parse_;
 };
 
 }  // namespace

@@ -154,14 +154,15 @@ TEST(ToyMethod, RegistryFindsItByTypeNameAndByModel) {
   // A second method of the same type name or model type is refused.
   EXPECT_THROW(registerMethod(*method), std::invalid_argument);
   // Unknown types name every registered one.
-  try {
-    parseModel(R"({"type": "nope"})", "n.json");
-    FAIL() << "parsed an unknown type";
-  } catch (const ModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("\"bspline-pde\" or \"bilinear-coons\""),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string refusal = [] {
+    try {
+      parseModel(R"({"type": "nope"})", "n.json");
+    } catch (const ModelError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(parsed)");
+  }();
+  EXPECT_NE(refusal.find("\"bspline-pde\" or \"bilinear-coons\""), std::string::npos) << refusal;
 }
 
 TEST(ToyMethod, SolvesTessellatesSamplesAndWritesBack) {
