@@ -23,7 +23,7 @@ template <typename T>
 std::vector<std::string> examplesOf() {
   std::vector<std::string> files;
   for (const std::string& f : exampleFiles())
-    if (std::holds_alternative<T>(loadModel(f))) files.push_back(f);
+    if (loadModel(f).is<T>()) files.push_back(f);
   return files;
 }
 
@@ -113,11 +113,11 @@ TEST_P(SpectralExample, MeetsItsConditionsAndTessellatesCleanly) {
   std::vector<const SpectralPatch*> patches;
   std::optional<SpectralPatch> patch;
   std::optional<CrossSectionChain> chain;
-  if (const auto* m = std::get_if<SpectralModel>(&any)) {
+  if (const auto* m = any.as<SpectralModel>()) {
     patch = solveModel(*m, GetParam());
     patches.push_back(&*patch);
   } else {
-    const auto& cs = std::get<CrossSectionModel>(any);
+    const auto& cs = any.get<CrossSectionModel>();
     chain = solveModel(cs, GetParam());
     for (const ChainPatch& p : chain->patches) patches.push_back(&p.patch);
     if (cs.options.method == ChainMethod::ExactC2)
@@ -159,7 +159,7 @@ constexpr double kExampleBlendGapTolerance = 1e-9;
 
 TEST_P(BSplineExample, SolvesThePdeAndTessellatesCleanly) {
   const AnyModel any = loadModel(GetParam());
-  const auto& model = std::get<BSplinePdeModel>(any);
+  const auto& model = any.get<BSplinePdeModel>();
   const SolvedBSplinePde solved = solveBSplineModel(model, GetParam());
   for (const BSplineSurface& piece : solved.pieces)
     EXPECT_LT(pdeResidual(piece), kExampleBSplineTolerance);

@@ -60,7 +60,7 @@ struct CoonsCommand {
       throw UsageError("coons: choose one of --bilinear, --tangents and --own-tangents");
     checkMeshExtension(outPath);
     AnyModel any = loadModel(modelPath);
-    const auto* model = std::get_if<VertexFrameModel>(&any);
+    const auto* model = any.as<VertexFrameModel>();
     if (!model) throw UsageError(fmt::format("{}: coons takes a vertex-frames model", modelPath));
     const VertexFrameSurface surface = solve(*model, solveArgs.options(any));
     std::vector<std::uint32_t> which = frames;

@@ -1,18 +1,22 @@
-// The model layer: a model of any type, parsed (AnyModel) or solved (SolvedModel), and what
-// every front end (the CLI, the studio, the session) does with one, written once. Front ends
-// never branch on the model's type; a new method is one more alternative of AnyModel and of
-// SolvedModel's variant, and one more case in src/model/. docs/architecture.md draws where
-// this layer sits.
+// The model layer: a model of any method, parsed (AnyModel) or solved (SolvedModel, over
+// the SolvedSurface interface), and what every front end (the CLI, the studio, the session)
+// does with one, written once. Each surface method is one description (SurfaceMethod,
+// method.hpp) in the registry; AnyModel and SolvedModel hold a method's own values behind
+// that description, so front ends never branch on the model's type. docs/architecture.md
+// draws where this layer sits and where the descriptions live.
 #pragma once
 
+#include <any>
 #include <array>
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <typeinfo>
 #include <utility>
-#include <variant>
 #include <vector>
 
 #include "pdesurf/bspline_pde_model.hpp"
@@ -24,31 +28,162 @@
 
 namespace pdesurf {
 
-/// Any model as a file describes it (docs/model-format.md). Parsed and written by io
-/// (model_io.hpp: parseModel, loadModel, serializeModel).
-using AnyModel = std::variant<VertexFrameModel, SpectralModel, CrossSectionModel, BSplinePdeModel>;
+class SurfaceMethod;
 
-/// The "type" of a model file: "vertex-frames", "spectral", "cross-sections", "bspline-pde".
+/// The description registered for models of C++ type `type` (method.hpp: the built-in
+/// methods and those given to registerMethod). Throws std::invalid_argument when none is.
+const SurfaceMethod& methodForModelType(const std::type_info& type);
+
+/// Any model as a file describes it (docs/model-format.md): one method's own model value
+/// (VertexFrameModel, SpectralModel, CrossSectionModel, BSplinePdeModel, or a registered
+/// method's) with its method's description. A value: copies copy the model. Parsed and
+/// written by io (model_io.hpp: parseModel, loadModel, serializeModel).
+class AnyModel {
+ public:
+  /// Any registered method's model (implicit, as the variant it replaces was).
+  template <class T>
+  requires(!std::same_as<std::remove_cvref_t<T>, AnyModel>)
+      AnyModel(T model)  // NOLINT(google-explicit-constructor)
+      : value_(std::move(model)), method_(&methodForModelType(typeid(T))) {}
+
+  /// The description of the model's method (its type name, parse, solve, …).
+  const SurfaceMethod& method() const { return *method_; }
+  /// The model as its method's own type, else nullptr: for the few places that work on one
+  /// method's data (a method's own edits, the vertex-frame structure edits).
+  template <class T>
+  const T* as() const {
+    return std::any_cast<T>(&value_);
+  }
+  template <class T>
+  T* as() {
+    return std::any_cast<T>(&value_);
+  }
+  template <class T>
+  bool is() const {
+    return as<T>() != nullptr;
+  }
+  /// The model as T; throws std::bad_any_cast when it is another method's.
+  template <class T>
+  const T& get() const {
+    return std::any_cast<const T&>(value_);
+  }
+  template <class T>
+  T& get() {
+    return std::any_cast<T&>(value_);
+  }
+
+ private:
+  std::any value_;
+  const SurfaceMethod* method_;
+};
+
+/// The "type" of a model file: "vertex-frames", "spectral", "cross-sections", "bspline-pde",
+/// or a registered method's.
 const char* modelTypeName(const AnyModel& model);
 /// The "name" a model file gives (empty when it gives none).
 const std::string& modelNameOf(const AnyModel& model);
 
-/// A spectral or cross-section model, solved; nothing for the other types.
-std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source);
+/// One patch sampled on a grid × grid lattice: points[j*grid+i] = S(u_i, v_j).
+struct PatchSamples {
+  const char* label = "patch";  ///< the JSON key of `index`: "frame" for vertex frames
+  std::size_t index = 0;
+  std::uint32_t grid = 0;
+  std::optional<std::pair<double, double>> u;          ///< spectral: the patch's u range
+  std::optional<std::array<std::uint32_t, 2>> origin;  ///< B-spline pieces: origin in the blend
+  std::vector<Vec3> points;
+};
 
-/// Any model, solved. Alternatives in the order of AnyModel's: a vertex-frame surface, a
-/// spectral patch or cross-section chain (SolvedSpectral), a B-spline PDE surface or blend.
-using SolvedAlternative = std::variant<VertexFrameSurface, SolvedSpectral, SolvedBSplinePde>;
+/// What the studio's frame view draws of a model it does not edit: polylines of the
+/// defining curves (spectral position curves, B-spline control polygons) and spines.
+/// Empty for vertex frames (the page draws their frames from the model itself).
+struct ModelOverlay {
+  std::vector<std::vector<Vec3>> curves, spines;
+};
+
+/// What `build` and `info` report of a solved model.
+struct ModelReport {
+  std::string summary;  ///< "3 frames, 2 strips" / "spectral, order 12, …" / "bspline-pde, …"
+  std::string quality;  ///< "C0 gap 0" / "condition error 1e-15" / "PDE residual 3e-16"
+};
+
+/// A patch's parameter rectangle [u0, u1] × [v0, v1] (u1 < u0 where a patch runs backwards).
+struct PatchDomain {
+  double u0 = 0.0, u1 = 1.0, v0 = 0.0, v1 = 1.0;
+};
+
+/// A solved model of any method: what sampling, continuity checks, overlays, export,
+/// compare and rebuild use without knowing the method. Each method's solve returns one
+/// (a SolvedSurfaceOf its own solved value).
+class SolvedSurface {
+ public:
+  virtual ~SolvedSurface() = default;
+
+  virtual std::size_t patchCount() const = 0;
+  /// Patch k's parameter domain: the rectangle `sample` spans.
+  virtual PatchDomain domain(std::size_t patch) const = 0;
+  /// S, S_u, S_v of patch k at (u, v) in its domain.
+  virtual SurfacePoint evaluate(std::size_t patch, double u, double v) const = 0;
+  /// The mesh for options.resolution samples per patch side. The default: each patch its
+  /// own resolution × resolution grid over its domain (patches not welded), normals
+  /// S_u × S_v.
+  virtual Mesh tessellate(const TessellateOptions& options) const;
+  /// Every patch on a grid × grid lattice over its domain (the default: through evaluate).
+  virtual std::vector<PatchSamples> sample(std::uint32_t grid) const;
+  /// The patches as NURBS faces (docs/nurbs-export.md).
+  virtual NurbsModel toNurbs(const NurbsExportOptions& options) const = 0;
+  /// The largest distance between two patches where they should meet (absolute), 0 for a
+  /// single patch: the studio's X-C0-Gap.
+  virtual double largestC0Gap() const = 0;
+  /// The defining curves the studio's frame view draws (the default: none).
+  virtual ModelOverlay overlay() const { return {}; }
+  /// The solver's notes (vertex frames: strips pinned, …); the default: none.
+  virtual const std::vector<std::string>& notes() const;
+
+  /// The method's own solved value, else nullptr (see SolvedSurfaceOf).
+  template <class T>
+  const T* as() const;
+  /// The method's own solved value; throws std::bad_cast when it is another method's.
+  template <class T>
+  const T& get() const;
+};
+
+/// A SolvedSurface over a method's own solved value `T` (VertexFrameSurface,
+/// SolvedSpectral, SolvedBSplinePde, …), reachable with as<T>().
+template <class T>
+class SolvedSurfaceOf : public SolvedSurface {
+ public:
+  explicit SolvedSurfaceOf(T value) : value_(std::move(value)) {}
+  const T& value() const { return value_; }
+
+ protected:
+  T value_;
+};
+
+template <class T>
+const T* SolvedSurface::as() const {
+  const auto* typed = dynamic_cast<const SolvedSurfaceOf<T>*>(this);
+  return typed ? &typed->value() : nullptr;
+}
+
+template <class T>
+const T& SolvedSurface::get() const {
+  return dynamic_cast<const SolvedSurfaceOf<T>&>(*this).value();
+}
+
+/// A spectral or cross-section model, solved; nothing for the other types (the examples'
+/// tests).
+std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source);
 
 /// A parsed model with its solved surface, the name it goes by in messages (`source`, a
 /// file path) and the options it was solved with.
 class SolvedModel {
  public:
-  SolvedModel(std::shared_ptr<const AnyModel> model, SolvedAlternative solved, std::string source,
-              SolveOptions options);
+  SolvedModel(std::shared_ptr<const AnyModel> model, std::shared_ptr<const SolvedSurface> surface,
+              std::string source, SolveOptions options);
 
   const AnyModel& model() const { return *model_; }
-  const SolvedAlternative& solved() const { return solved_; }
+  /// The solved surface: patches, evaluation, tessellation, NURBS faces.
+  const SolvedSurface& surface() const { return *surface_; }
   const std::string& source() const { return source_; }
   const SolveOptions& options() const { return options_; }
   /// The model's "type": "vertex-frames", "spectral", "cross-sections", "bspline-pde".
@@ -56,22 +191,22 @@ class SolvedModel {
   /// The model's own name, else the file name of its source (modelDisplayName).
   std::string displayName() const;
   /// The solver's notes (vertex frames: strips pinned, …); empty for the other types.
-  const std::vector<std::string>& notes() const;
+  const std::vector<std::string>& notes() const { return surface_->notes(); }
   /// The solved spectral or cross-section model, else nullptr (the spine and fit commands).
-  const SolvedSpectral* spectral() const { return std::get_if<SolvedSpectral>(&solved_); }
+  const SolvedSpectral* spectral() const { return surface_->as<SolvedSpectral>(); }
   /// The solved vertex-frame surface, else nullptr (the Coons baselines).
-  const VertexFrameSurface* frames() const { return std::get_if<VertexFrameSurface>(&solved_); }
+  const VertexFrameSurface* frames() const { return surface_->as<VertexFrameSurface>(); }
 
  private:
   std::shared_ptr<const AnyModel> model_;  // shared with a session's undo steps
-  SolvedAlternative solved_;
+  std::shared_ptr<const SolvedSurface> surface_;
   std::string source_;
   SolveOptions options_;
 };
 
-/// Solves a model of any type. Vertex frames use `options` (and `topology` when given: one
-/// built by buildTopology for this model's frames, shared by every solve of a session);
-/// the other types' solver refusals become ModelError naming `source`.
+/// Solves a model of any method (its description's solve). Vertex frames use `options` (and
+/// `topology` when given: one built by buildTopology for this model's frames, shared by every solve
+/// of a session); the other types' solver refusals become ModelError naming `source`.
 SolvedModel solveModel(std::shared_ptr<const AnyModel> model, const std::string& source,
                        const SolveOptions& options = {},
                        std::shared_ptr<const FrameTopology> topology = nullptr);
@@ -104,24 +239,10 @@ class ModelTessellator {
   std::uint64_t layoutVersion_ = 0;
 };
 
-/// One patch sampled on a grid × grid lattice: points[j*grid+i] = S(u_i, v_j).
-struct PatchSamples {
-  const char* label = "patch";  ///< the JSON key of `index`: "frame" for vertex frames
-  std::size_t index = 0;
-  std::uint32_t grid = 0;
-  std::optional<std::pair<double, double>> u;          ///< spectral: the patch's u range
-  std::optional<std::array<std::uint32_t, 2>> origin;  ///< B-spline pieces: origin in the blend
-  std::vector<Vec3> points;
-};
 /// Every patch sampled: vertex frames and B-spline pieces on the unit square, spectral
 /// patches over their u range and v ∈ [0, 2π].
 std::vector<PatchSamples> sample(const SolvedModel& solved, std::uint32_t grid);
 
-/// What `build` and `info` report of a solved model.
-struct ModelReport {
-  std::string summary;  ///< "3 frames, 2 strips" / "spectral, order 12, …" / "bspline-pde, …"
-  std::string quality;  ///< "C0 gap 0" / "condition error 1e-15" / "PDE residual 3e-16"
-};
 ModelReport report(const SolvedModel& solved);
 /// `info`: counts, quality figures, bounding box and storage, as text or as JSON.
 std::string infoText(const SolvedModel& solved, bool json);
@@ -132,12 +253,7 @@ double largestC0Gap(const SolvedModel& solved);
 /// The patches as NURBS faces (docs/nurbs-export.md).
 NurbsModel toNurbs(const SolvedModel& solved, const NurbsExportOptions& options = {});
 
-/// What the studio's frame view draws of a model it does not edit: polylines of the
-/// defining curves (spectral position curves, B-spline control polygons) and spines.
-/// Empty for vertex frames (the page draws their frames from the model itself).
-struct ModelOverlay {
-  std::vector<std::vector<Vec3>> curves, spines;
-};
+/// The defining curves the studio's frame view draws (ModelOverlay).
 ModelOverlay overlay(const SolvedModel& solved);
 
 /// `name` when it is not empty, else the file name of `path`: how output names a model.

@@ -24,6 +24,7 @@
 #include "pdesurf/vertex_frames.hpp"
 
 // Any model: solved, tessellated, sampled, transformed.
+#include "pdesurf/method.hpp"
 #include "pdesurf/model.hpp"
 #include "pdesurf/transform.hpp"
 

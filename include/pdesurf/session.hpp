@@ -355,7 +355,7 @@ class ModelSession {
   const AnyModel& model() const { return *current_.model; }
   /// The editable vertex-frame model, or nullptr for the other types (they take shape edits
   /// and whole-model transforms).
-  const VertexFrameModel* frames() const { return std::get_if<VertexFrameModel>(&model()); }
+  const VertexFrameModel* frames() const { return model().as<VertexFrameModel>(); }
   bool editable() const { return frames() != nullptr; }
   /// Increases with every change of the model (edit, transform, undo, redo).
   std::uint64_t revision() const { return revision_; }

@@ -77,7 +77,7 @@ CrossSectionModel transformModel(const CrossSectionModel& model, const AffineMap
 /// x, y and z and B-spline bases sum to 1, so the solved model is the transformed surface
 /// (for a similarity where samples are placed by chord length).
 BSplinePdeModel transformModel(const BSplinePdeModel& model, const AffineMap& map);
-/// Any model type. Throws std::invalid_argument for a type it does not know.
+/// Any model: its method's transform (SurfaceMethod::transform, method.hpp).
 AnyModel transformModel(const AnyModel& model, const AffineMap& map);
 
 }  // namespace pdesurf

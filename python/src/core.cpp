@@ -101,7 +101,7 @@ std::string jsonText(const py::object& value, const char* name) {
 }
 
 const VertexFrameModel& framesOf(const Model& model) {
-  const auto* frames = std::get_if<VertexFrameModel>(model.model.get());
+  const auto* frames = model.model->as<VertexFrameModel>();
   if (!frames)
     throw py::type_error(std::string("a vertex-frames model only; this one is ") +
                          modelTypeName(*model.model));
@@ -146,44 +146,19 @@ std::shared_ptr<SolvedModel> solve(const Model& model, const std::string& solver
   return std::make_shared<SolvedModel>(solveModel(model.model, model.source, options));
 }
 
-// The patches of a solved model, their domains and evaluation: one branch per solved type
-// until the library's solved-model interface (the issue "pdesurf as a library") gives them.
-std::size_t patchCount(const SolvedModel& solved) {
-  return std::visit(
-      [](const auto& s) -> std::size_t {
-        using T = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<T, VertexFrameSurface>)
-          return s.patches.size();
-        else if constexpr (std::is_same_v<T, SolvedSpectral>)
-          return s.patchCount();
-        else
-          return s.pieces.size();
-      },
-      solved.solved());
-}
+// The patches of a solved model, their domains and evaluation: the library's solved-model
+// interface (SolvedSurface, model.hpp).
+std::size_t patchCount(const SolvedModel& solved) { return solved.surface().patchCount(); }
 
 /// Patch k's parameter domain {u0, u1, v0, v1}: the unit square, or a spectral patch's
 /// shown u range and v ∈ [0, 2π] (the parameters `sample` spans).
 std::array<double, 4> patchDomain(const SolvedModel& solved, std::size_t k) {
-  if (const auto* s = std::get_if<SolvedSpectral>(&solved.solved())) {
-    const auto [u0, u1] = s->range(k);
-    return {u0, u1, 0.0, 2.0 * std::numbers::pi};
-  }
-  return {0.0, 1.0, 0.0, 1.0};
+  const PatchDomain d = solved.surface().domain(k);
+  return {d.u0, d.u1, d.v0, d.v1};
 }
 
 SurfacePoint evaluatePatch(const SolvedModel& solved, std::size_t k, double u, double v) {
-  return std::visit(
-      [&](const auto& s) -> SurfacePoint {
-        using T = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<T, VertexFrameSurface>)
-          return s.patches[k].evaluate(u, v);
-        else if constexpr (std::is_same_v<T, SolvedSpectral>)
-          return s.patchAt(k).evaluate(u, v);
-        else
-          return s.pieces[k].evaluate(u, v);
-      },
-      solved.solved());
+  return solved.surface().evaluate(k, u, v);
 }
 
 py::tuple evaluate(const SolvedModel& solved, const py::object& patch, const py::object& u,

@@ -123,7 +123,7 @@ Model frameModel(VertexFrameModel model, const std::string& source) {
 }
 
 const VertexFrameModel& framesOf(const Model& model, const char* name) {
-  const auto* frames = std::get_if<VertexFrameModel>(model.model.get());
+  const auto* frames = model.model->as<VertexFrameModel>();
   if (!frames) badArgument(name, "a vertex-frames model is needed");
   return *frames;
 }
@@ -399,10 +399,8 @@ void bindTools(py::module_& m) {
       [](const py::object& value) -> std::size_t {
         if (py::isinstance<Mesh>(value)) return storageBytes(value.cast<const Mesh&>());
         const Model& model = value.cast<const Model&>();
-        if (const auto* f = std::get_if<VertexFrameModel>(model.model.get()))
-          return storageBytes(*f);
-        if (const auto* c = std::get_if<CrossSectionModel>(model.model.get()))
-          return storageBytes(*c);
+        if (const auto* f = model.model->as<VertexFrameModel>()) return storageBytes(*f);
+        if (const auto* c = model.model->as<CrossSectionModel>()) return storageBytes(*c);
         badArgument("model", "storage is counted for vertex-frames and cross-sections models");
       },
       py::arg("model"),

@@ -73,7 +73,7 @@ AffineMap inlineTransform(const Json& doc) {
 }
 
 ShapeEdit parseSetOperator(const ModelReader& rd, const Json& doc, const AnyModel& model) {
-  const bool spectral = std::holds_alternative<SpectralModel>(model);
+  const bool spectral = model.is<SpectralModel>();
   if (spectral)
     onlyMembers(rd, doc, {"operator", "N", "a", "modes", "remainder"});
   else
@@ -109,9 +109,9 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
   const auto [doc, group, name] = rd.edit(json);
   GroupedShapeEdit out;
   out.group = group;
-  const bool spectral = std::holds_alternative<SpectralModel>(model);
-  const bool sections = std::holds_alternative<CrossSectionModel>(model);
-  const bool bspline = std::holds_alternative<BSplinePdeModel>(model);
+  const bool spectral = model.is<SpectralModel>();
+  const bool sections = model.is<CrossSectionModel>();
+  const bool bspline = model.is<BSplinePdeModel>();
   const auto only = [&](bool allowed, const char* types) {
     if (!allowed)
       rd.fail("$.op", fmt::format("\"{}\" edits {} models, not {} models", name, types,
@@ -215,7 +215,7 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
     out.edit = std::move(e);
   } else if (name == "add-section" || name == "remove-section") {
     only(sections, "cross-sections");
-    const std::size_t count = std::get<CrossSectionModel>(model).curves.size();
+    const std::size_t count = model.get<CrossSectionModel>().curves.size();
     if (name == "remove-section") {
       onlyMembers(rd, doc, {"index"});
       out.edit = RemoveSection{
@@ -236,7 +236,7 @@ GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model) {
   } else if (name == "move-control-points") {
     only(bspline, "bspline-pde");
     onlyMembers(rd, doc, {"points", "positions"});
-    const auto& m = std::get<BSplinePdeModel>(model);
+    const auto& m = model.get<BSplinePdeModel>();
     if (m.form != BSplinePdeModel::Form::Net)
       rd.fail("$.op", fmt::format("the {} form has no net of its own: move the points of its "
                                   "curves (move-curve-points)",

@@ -5,6 +5,7 @@
 
 #include "io/json_reader.hpp"
 #include "pdesurf/edit_io.hpp"
+#include "pdesurf/method.hpp"
 
 namespace pdesurf {
 
@@ -88,7 +89,7 @@ void checkTransform(const VertexFrameModel& model, const AffineMap& map) {
 }
 
 void checkTransform(const AnyModel& model, const AffineMap& map) {
-  if (const auto* frames = std::get_if<VertexFrameModel>(&model)) checkTransform(*frames, map);
+  model.method().checkTransform(model, map);
 }
 
 }  // namespace pdesurf

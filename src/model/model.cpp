@@ -1,6 +1,7 @@
 // The model layer (include/pdesurf/model.hpp): solve, tessellate, sample, NURBS, overlay
-// curves and transform checks of a model of any type. Every branch on the model's type in
-// pdesurf is here or in src/model/report_*.cpp.
+// and reports of a model of any method, each through the model's description (method.hpp)
+// or its SolvedSurface; the SolvedSurface defaults (a patch grid, samples through evaluate).
+// The methods themselves are in src/methods/.
 #include "pdesurf/model.hpp"
 
 #include <algorithm>
@@ -11,40 +12,26 @@
 
 #include <fmt/format.h>
 
-#include "pdesurf/analysis.hpp"
+#include "pdesurf/method.hpp"
 
 namespace pdesurf {
 
-namespace {
+const char* modelTypeName(const AnyModel& model) { return model.method().typeName(); }
 
-/// Calls f with the solved alternative; a short way to write "for each type".
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-
-}  // namespace
-
-const char* modelTypeName(const AnyModel& model) {
-  constexpr const char* kNames[] = {"vertex-frames", "spectral", "cross-sections", "bspline-pde"};
-  static_assert(std::size(kNames) == std::variant_size_v<AnyModel>);
-  return kNames[model.index()];
-}
-
-const std::string& modelNameOf(const AnyModel& model) {
-  return std::visit([](const auto& m) -> const std::string& { return m.name; }, model);
-}
+const std::string& modelNameOf(const AnyModel& model) { return model.method().name(model); }
 
 std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source) {
-  if (const auto* m = std::get_if<SpectralModel>(&model)) return solveSpectralModel(*m, source);
-  if (const auto* m = std::get_if<CrossSectionModel>(&model)) return solveSpectralModel(*m, source);
+  // A type branch: the examples' tests compare the spectral engines alone.
+  if (const auto* m = model.as<SpectralModel>()) return solveSpectralModel(*m, source);
+  if (const auto* m = model.as<CrossSectionModel>()) return solveSpectralModel(*m, source);
   return std::nullopt;
 }
 
-SolvedModel::SolvedModel(std::shared_ptr<const AnyModel> model, SolvedAlternative solved,
-                         std::string source, SolveOptions options)
+SolvedModel::SolvedModel(std::shared_ptr<const AnyModel> model,
+                         std::shared_ptr<const SolvedSurface> surface, std::string source,
+                         SolveOptions options)
     : model_(std::move(model)),
-      solved_(std::move(solved)),
+      surface_(std::move(surface)),
       source_(std::move(source)),
       options_(options) {}
 
@@ -58,29 +45,15 @@ std::string SolvedModel::displayName() const {
   return modelDisplayName(modelNameOf(*model_), source_);
 }
 
-const std::vector<std::string>& SolvedModel::notes() const {
+const std::vector<std::string>& SolvedSurface::notes() const {
   static const std::vector<std::string> kNone;
-  const auto* surface = frames();
-  return surface ? surface->notes : kNone;
+  return kNone;
 }
 
 SolvedModel solveModel(std::shared_ptr<const AnyModel> model, const std::string& source,
                        const SolveOptions& options, std::shared_ptr<const FrameTopology> topology) {
-  SolvedAlternative solved =
-      std::visit(Overloaded{[&](const VertexFrameModel& m) -> SolvedAlternative {
-                              return topology ? solve(m, topology, options) : solve(m, options);
-                            },
-                            [&](const SpectralModel& m) -> SolvedAlternative {
-                              return solveSpectralModel(m, source);
-                            },
-                            [&](const CrossSectionModel& m) -> SolvedAlternative {
-                              return solveSpectralModel(m, source);
-                            },
-                            [&](const BSplinePdeModel& m) -> SolvedAlternative {
-                              return solveBSplineModel(m, source);
-                            }},
-                 *model);
-  return SolvedModel(std::move(model), std::move(solved), source, options);
+  auto surface = model->method().solve(*model, source, options, topology);
+  return SolvedModel(std::move(model), std::move(surface), source, options);
 }
 
 SolvedModel solveModel(AnyModel model, const std::string& source, const SolveOptions& options) {
@@ -88,24 +61,21 @@ SolvedModel solveModel(AnyModel model, const std::string& source, const SolveOpt
 }
 
 void checkSolveOptions(const AnyModel& model, const SolveOptions& options) {
-  const auto* frames = std::get_if<VertexFrameModel>(&model);
-  if (!frames || options.seedFrame < frames->frames.size()) return;
-  const std::size_t n = frames->frames.size();
-  throw std::out_of_range(fmt::format("out of range, the model has {} frame{} (indices 0 to {})", n,
-                                      n == 1 ? "" : "s", n - 1));
+  model.method().checkSolveOptions(model, options);
 }
 
+void SurfaceMethod::checkSolveOptions(const AnyModel&, const SolveOptions&) const {}
+
+void SurfaceMethod::checkTransform(const AnyModel&, const AffineMap&) const {}
+
 Mesh tessellate(const SolvedModel& solved, const TessellateOptions& options) {
-  // The spectral and B-spline engines take the samples per patch side.
-  return std::visit(
-      Overloaded{[&](const VertexFrameSurface& s) { return tessellate(s, options); },
-                 [&](const SolvedSpectral& s) { return tessellate(s, options.resolution); },
-                 [&](const SolvedBSplinePde& s) { return tessellate(s, options.resolution); }},
-      solved.solved());
+  return solved.surface().tessellate(options);
 }
 
 const Mesh& ModelTessellator::tessellate(const SolvedModel& solved,
                                          const TessellateOptions& options) {
+  // A type branch: vertex frames re-tessellate in place (Tessellator), keeping the layout
+  // while only positions move; every other method is tessellated afresh and compared.
   if (const VertexFrameSurface* surface = solved.frames()) {
     const Mesh& mesh = frames_.tessellate(*surface, options);
     if (!lastWasFrames_ || frames_.layoutVersion() != framesLayout_) ++layoutVersion_;
@@ -123,129 +93,62 @@ const Mesh& ModelTessellator::tessellate(const SolvedModel& solved,
   return mesh_;
 }
 
-namespace {
-
-/// points[j*grid+i] = f(i, j).
-template <class F>
-std::vector<Vec3> grid(std::uint32_t n, F&& f) {
-  std::vector<Vec3> points;
-  points.reserve(std::size_t{n} * n);
-  for (std::uint32_t j = 0; j < n; ++j)
-    for (std::uint32_t i = 0; i < n; ++i) points.push_back(f(i, j));
-  return points;
+Mesh SolvedSurface::tessellate(const TessellateOptions& options) const {
+  const std::uint32_t n = options.resolution;
+  if (n < 2) throw std::invalid_argument("tessellate: resolution must be at least 2");
+  Mesh mesh;
+  for (std::size_t k = 0; k < patchCount(); ++k) {
+    const PatchDomain d = domain(k);
+    const auto base = static_cast<std::uint32_t>(mesh.vertexCount());
+    for (std::uint32_t j = 0; j < n; ++j)
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const double u = d.u0 + (d.u1 - d.u0) * static_cast<double>(i) / (n - 1);
+        const double v = d.v0 + (d.v1 - d.v0) * static_cast<double>(j) / (n - 1);
+        const SurfacePoint s = evaluate(k, u, v);
+        const Vec3 normal = s.du.cross(s.dv).normalized();
+        for (int c = 0; c < 3; ++c) {
+          mesh.positions.push_back(static_cast<float>(s.p[c]));
+          mesh.normals.push_back(static_cast<float>(normal[c]));
+        }
+      }
+    for (std::uint32_t j = 0; j + 1 < n; ++j)
+      for (std::uint32_t i = 0; i + 1 < n; ++i) {
+        const std::uint32_t a = base + j * n + i, b = a + 1, c = a + n, e = c + 1;
+        for (std::uint32_t index : {a, b, e, a, e, c}) mesh.indices.push_back(index);
+        for (int t = 0; t < 2; ++t) mesh.patchIds.push_back(static_cast<std::uint32_t>(k));
+      }
+  }
+  return mesh;
 }
 
-/// i/(n−1): the unit-square samples of vertex frames and B-spline pieces.
-double unit(std::uint32_t i, std::uint32_t n) { return static_cast<double>(i) / (n - 1); }
-
-}  // namespace
+std::vector<PatchSamples> SolvedSurface::sample(std::uint32_t n) const {
+  std::vector<PatchSamples> out;
+  for (std::size_t k = 0; k < patchCount(); ++k) {
+    const PatchDomain d = domain(k);
+    PatchSamples samples{"patch", k, n, std::nullopt, std::nullopt, {}};
+    for (std::uint32_t j = 0; j < n; ++j)
+      for (std::uint32_t i = 0; i < n; ++i)
+        samples.points.push_back(evaluate(k,
+                                          d.u0 + (d.u1 - d.u0) * static_cast<double>(i) / (n - 1),
+                                          d.v0 + (d.v1 - d.v0) * static_cast<double>(j) / (n - 1))
+                                     .p);
+    out.push_back(std::move(samples));
+  }
+  return out;
+}
 
 std::vector<PatchSamples> sample(const SolvedModel& solved, std::uint32_t n) {
-  std::vector<PatchSamples> out;
-  std::visit(Overloaded{[&](const VertexFrameSurface& s) {
-                          for (std::size_t k = 0; k < s.patches.size(); ++k)
-                            out.push_back({"frame", k, n, std::nullopt, std::nullopt,
-                                           grid(n, [&](std::uint32_t i, std::uint32_t j) {
-                                             return s.patches[k].position(unit(i, n), unit(j, n));
-                                           })});
-                        },
-                        [&](const SolvedSpectral& s) {
-                          for (std::size_t k = 0; k < s.patchCount(); ++k) {
-                            const auto [u0, u1] = s.range(k);
-                            out.push_back({"patch", k, n, std::pair{u0, u1}, std::nullopt,
-                                           grid(n, [&](std::uint32_t i, std::uint32_t j) {
-                                             // As the CLI always sampled (same rounding).
-                                             return s.patchAt(k).position(
-                                                 u0 + (u1 - u0) * static_cast<double>(i) / (n - 1),
-                                                 2.0 * std::numbers::pi * static_cast<double>(j) /
-                                                     (n - 1));
-                                           })});
-                          }
-                        },
-                        [&](const SolvedBSplinePde& s) {
-                          for (std::size_t k = 0; k < s.pieces.size(); ++k)
-                            out.push_back({"patch", k, n, std::nullopt, s.origin[k],
-                                           grid(n, [&](std::uint32_t i, std::uint32_t j) {
-                                             return s.pieces[k].position(unit(i, n), unit(j, n));
-                                           })});
-                        }},
-             solved.solved());
-  return out;
+  return solved.surface().sample(n);
 }
 
-double largestC0Gap(const SolvedModel& solved) {
-  return std::visit(Overloaded{[](const VertexFrameSurface& s) { return measureC0Gap(s).maxGap; },
-                               [](const SolvedSpectral& s) {
-                                 double gap = 0.0;
-                                 if (s.chain)
-                                   for (const JointGap& g : measureJointGaps(*s.chain))
-                                     gap = std::max(gap, g.c0);
-                                 return gap;
-                               },
-                               [](const SolvedBSplinePde&) { return 0.0; }},
-                    solved.solved());
-}
+double largestC0Gap(const SolvedModel& solved) { return solved.surface().largestC0Gap(); }
 
 NurbsModel toNurbs(const SolvedModel& solved, const NurbsExportOptions& options) {
-  return std::visit(Overloaded{[&](const VertexFrameSurface& s) { return toNurbs(s, options); },
-                               [&](const SolvedSpectral& s) { return toNurbs(s, options); },
-                               [&](const SolvedBSplinePde& s) {
-                                 return toNurbs(std::span<const BSplineSurface>(s.pieces), options);
-                               }},
-                    solved.solved());
+  return solved.surface().toNurbs(options);
 }
 
-ModelOverlay overlay(const SolvedModel& solved) {
-  constexpr std::uint32_t kViewCurveSamples = 96, kViewSpineSamples = 65;
-  // A condition at u within this of a patch's range belongs to it (its ends are computed).
-  constexpr double kRangeSlack = 1e-12;
-  ModelOverlay out;
-  std::visit(
-      Overloaded{[](const VertexFrameSurface&) {},
-                 [&](const SolvedBSplinePde& b) {
-                   // The control polygon of each piece: its rows and its columns.
-                   for (const BSplineSurface& piece : b.pieces) {
-                     const ControlNet& net = piece.net();
-                     for (int direction = 0; direction < 2; ++direction) {
-                       const std::uint32_t lines = direction == 0 ? net.nu : net.nv;
-                       const std::uint32_t along = direction == 0 ? net.nv : net.nu;
-                       for (std::uint32_t a = 0; a <= lines; ++a) {
-                         std::vector<Vec3> line;
-                         for (std::uint32_t k = 0; k <= along; ++k)
-                           line.push_back(direction == 0 ? net(a, k) : net(k, a));
-                         out.curves.push_back(std::move(line));
-                       }
-                     }
-                   }
-                 },
-                 [&](const SolvedSpectral& s) {
-                   // Each patch's position curves (closed, sampled at kViewCurveSamples v) and
-                   // spine.
-                   for (std::size_t k = 0; k < s.patchCount(); ++k) {
-                     const SpectralPatch& p = s.patchAt(k);
-                     const auto [u0, u1] = s.range(k);
-                     for (const auto& c : p.conditions()) {
-                       if (c.derivative != 0 || c.u < std::min(u0, u1) - kRangeSlack ||
-                           c.u > std::max(u0, u1) + kRangeSlack)
-                         continue;
-                       std::vector<Vec3> line;
-                       for (std::uint32_t j = 0; j < kViewCurveSamples; ++j)
-                         line.push_back(
-                             p.position(c.u, 2.0 * std::numbers::pi * j / kViewCurveSamples));
-                       out.curves.push_back(std::move(line));
-                     }
-                     std::vector<Vec3> spine;
-                     for (std::uint32_t i = 0; i < kViewSpineSamples; ++i)
-                       spine.push_back(p.spine(u0 + (u1 - u0) * i / (kViewSpineSamples - 1.0)));
-                     out.spines.push_back(std::move(spine));
-                   }
-                 }},
-      solved.solved());
-  return out;
-}
+ModelOverlay overlay(const SolvedModel& solved) { return solved.surface().overlay(); }
 
-bool hasEditableParts(const AnyModel& model) {
-  return std::holds_alternative<VertexFrameModel>(model);
-}
+bool hasEditableParts(const AnyModel& model) { return model.method().editsParts(); }
 
 }  // namespace pdesurf

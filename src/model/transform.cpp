@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
+#include "pdesurf/method.hpp"
+
 namespace pdesurf {
 
 AffineMap AffineMap::translationBy(const Vec3& t) {
@@ -115,17 +117,7 @@ BSplinePdeModel transformModel(const BSplinePdeModel& model, const AffineMap& ma
 }
 
 AnyModel transformModel(const AnyModel& model, const AffineMap& map) {
-  return std::visit(
-      [&](const auto& m) -> AnyModel {
-        using T = std::decay_t<decltype(m)>;
-        if constexpr (requires {
-                        { transformModel(m, map) } -> std::same_as<T>;
-                      })
-          return transformModel(m, map);
-        else
-          throw std::invalid_argument("this model type cannot be transformed yet");
-      },
-      model);
+  return model.method().transform(model, map);
 }
 
 }  // namespace pdesurf

@@ -19,7 +19,7 @@ constexpr const char* kClosedNames[] = {"start", "end"};
 /// "edit", at `path`) when the model has no such curve.
 CurveTarget curveTarget(AnyModel& model, const CurveRef& ref, const std::string& path) {
   const ModelReader rd("edit");
-  if (auto* m = std::get_if<SpectralModel>(&model)) {
+  if (auto* m = model.as<SpectralModel>()) {
     if (!ref.name.empty()) rd.fail(path, "a spectral model's curves are numbered (its conditions)");
     const std::uint32_t i = ref.index;
     if (i >= m->conditions.size())
@@ -28,14 +28,14 @@ CurveTarget curveTarget(AnyModel& model, const CurveRef& ref, const std::string&
     return {&m->conditions[i].curve, nullptr, m->conditions[i].derivative > 0,
             fmt::format("$.conditions[{}].curve", i)};
   }
-  if (auto* m = std::get_if<CrossSectionModel>(&model)) {
+  if (auto* m = model.as<CrossSectionModel>()) {
     if (!ref.name.empty()) rd.fail(path, "a chain's sections are numbered");
     if (ref.index >= m->curves.size())
       rd.fail(path, fmt::format("section {} is out of range (the chain has {}, indices 0 to {})",
                                 ref.index, m->curves.size(), m->curves.size() - 1));
     return {&m->curves[ref.index], nullptr, false, fmt::format("$.curves[{}]", ref.index)};
   }
-  auto& m = std::get<BSplinePdeModel>(model);
+  auto& m = model.get<BSplinePdeModel>();
   using Form = BSplinePdeModel::Form;
   const auto pointsOf = [](BoundaryCurve& c) -> std::vector<Vec3>& {
     return std::visit([](auto& x) -> std::vector<Vec3>& { return x.points; }, c);

@@ -17,7 +17,9 @@ std::shared_ptr<const SolvedModel> ModelSession::solveIfFixed(
 ModelSession::ModelSession(AnyModel model, std::string source) : source_(std::move(source)) {
   auto shared = std::make_shared<const AnyModel>(std::move(model));
   std::shared_ptr<const FrameTopology> topology;
-  if (const auto* frames = std::get_if<VertexFrameModel>(shared.get()))
+  // A type branch: the vertex-frame part edits keep the frames' topology (issue 26 item 2
+  // makes the edits a method's own).
+  if (const auto* frames = shared->as<VertexFrameModel>())
     topology = std::make_shared<const FrameTopology>(buildTopology(*frames));
   current_ = {shared, solveIfFixed(shared), std::move(topology)};  // may throw: nothing to undo
 }

@@ -127,12 +127,12 @@ std::vector<Vec3> handlePoints(const AnyModel& model) {
     if (const auto* s = std::get_if<SampledCurve>(&c)) add(s->points);
     if (const auto* f = std::get_if<FourierCurve>(&c)) out.push_back(f->a0);
   };
-  if (const auto* m = std::get_if<SpectralModel>(&model)) {
+  if (const auto* m = model.as<SpectralModel>()) {
     for (const SpectralCondition& c : m->conditions)
       if (c.derivative == 0) addCurve(c.curve);
-  } else if (const auto* m = std::get_if<CrossSectionModel>(&model)) {
+  } else if (const auto* m = model.as<CrossSectionModel>()) {
     for (const CurveInput& c : m->curves) addCurve(c);
-  } else if (const auto* m = std::get_if<BSplinePdeModel>(&model)) {
+  } else if (const auto* m = model.as<BSplinePdeModel>()) {
     for (const Vec3& p : m->net.points)
       if (p.allFinite()) out.push_back(p);  // the inner points are NaN: solved
     for (std::vector<Vec3>* c : cornerCurves(const_cast<BSplinePdeModel&>(*m))) add(*c);
@@ -171,9 +171,7 @@ void checkReach(const AnyModel& before, const SolvedModel& solvedBefore, const A
                   advice.empty() ? "Move whole curves instead" : advice));
 }
 
-bool takesShapeEdits(const AnyModel& model) {
-  return !std::holds_alternative<VertexFrameModel>(model);
-}
+bool takesShapeEdits(const AnyModel& model) { return !model.is<VertexFrameModel>(); }
 
 AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const ShapeEdit& edit) {
   const ModelReader rd("edit");
@@ -203,7 +201,7 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
           c.a.resize(terms, Vec3::Zero());
           c.b.resize(terms, Vec3::Zero());
         } else if constexpr (std::is_same_v<T, SetOperator>) {
-          if (auto* m = std::get_if<SpectralModel>(&next)) {
+          if (auto* m = next.as<SpectralModel>()) {
             SpectralOperator& op = m->op;
             if (e.kind && *e.kind != op.kind) {
               op.kind = *e.kind;
@@ -218,22 +216,22 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
             if (e.modes) m->options.modes = *e.modes;
             if (e.remainder) m->options.remainder = *e.remainder;
           } else {
-            auto& options = std::get<CrossSectionModel>(next).options;
+            auto& options = next.get<CrossSectionModel>().options;
             if (e.a) options.a = *e.a;
             if (e.modes) options.modes = *e.modes;
             if (e.remainder) options.remainder = *e.remainder;
             if (e.method) options.method = *e.method;
           }
         } else if constexpr (std::is_same_v<T, SetSpine>) {
-          std::get<SpectralModel>(next).spineEdits = e.edits;
+          next.get<SpectralModel>().spineEdits = e.edits;
         } else if constexpr (std::is_same_v<T, AddSection>) {
-          auto& m = std::get<CrossSectionModel>(next);
+          auto& m = next.get<CrossSectionModel>();
           const std::size_t i = e.index;
           CurveInput curve;
           if (e.curve) {
             curve = *e.curve;
           } else {
-            const CrossSectionChain& chain = *std::get<SolvedSpectral>(solved.solved()).chain;
+            const CrossSectionChain& chain = *solved.surface().get<SolvedSpectral>().chain;
             const std::size_t count = std::max<std::size_t>(
                 {2 * std::size_t{m.options.modes} + 1, pointCount(m.curves[i - 1]),
                  pointCount(m.curves[i]), kMinSampledSection});
@@ -248,21 +246,20 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
             u.insert(u.begin() + static_cast<std::ptrdiff_t>(i), at);
           }
         } else if constexpr (std::is_same_v<T, RemoveSection>) {
-          auto& m = std::get<CrossSectionModel>(next);
+          auto& m = next.get<CrossSectionModel>();
           m.curves.erase(m.curves.begin() + e.index);
           if (!m.options.u.empty()) m.options.u.erase(m.options.u.begin() + e.index);
         } else {
           static_assert(std::is_same_v<T, MoveControlPoints>);
-          ControlNet& net = std::get<BSplinePdeModel>(next).net;
+          ControlNet& net = next.get<BSplinePdeModel>().net;
           for (std::size_t k = 0; k < e.points.size(); ++k)
             net(e.points[k][0], e.points[k][1]) = e.positions[k];
         }
       },
       edit);
-  if (auto* m = std::get_if<BSplinePdeModel>(&next);
-      m && (std::holds_alternative<MoveCurvePoints>(edit) ||
-            std::holds_alternative<TransformCurve>(edit))) {
-    BSplinePdeModel before = std::get<BSplinePdeModel>(model);
+  if (auto* m = next.as<BSplinePdeModel>(); m && (std::holds_alternative<MoveCurvePoints>(edit) ||
+                                                  std::holds_alternative<TransformCurve>(edit))) {
+    BSplinePdeModel before = model.get<BSplinePdeModel>();
     keepCornersShared(before, *m);
   }
   // What the file parser checks of the result (counts, orders, spine u order, modes against
@@ -286,14 +283,13 @@ void ModelSession::apply(const ShapeEdit& edit, std::string_view group) {
 }
 
 std::string dragAdvice(const AnyModel& model) {
-  if (const auto* m = std::get_if<CrossSectionModel>(&model);
-      m && m->options.method != ChainMethod::Global)
+  if (const auto* m = model.as<CrossSectionModel>(); m && m->options.method != ChainMethod::Global)
     return fmt::format(
         "this chain is built by the seed's marching method \"{}\": a moved point is passed "
         "on from patch to patch and can move the surface far from it. The global chain keeps a "
         "drag local",
         m->options.method == ChainMethod::ExactC2 ? "c2" : "shared-curves");
-  const auto* m = std::get_if<SpectralModel>(&model);
+  const auto* m = model.as<SpectralModel>();
   if (!m) return "";
   // A spectral patch: point 0 of each position condition given as points moved a little,
   // the surface's largest move measured (the probe's meshes correspond vertex by vertex).

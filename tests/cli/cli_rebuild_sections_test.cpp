@@ -42,7 +42,7 @@ TEST_F(CliRebuildSections, WritesAModelThatLiesWhereItSays) {
   // The file is an ordinary global cross-section model: `info` opens it, and measured again
   // with the library against the part it wrote, it gives the printed distance.
   const AnyModel model = loadModel(work_.file("leg.json"));
-  const auto* cs = std::get_if<CrossSectionModel>(&model);
+  const auto* cs = model.as<CrossSectionModel>();
   ASSERT_NE(cs, nullptr);
   EXPECT_EQ(cs->options.method, ChainMethod::Global);
   EXPECT_EQ(cs->curves.size(), 13u);

@@ -68,7 +68,7 @@ TEST_F(CliSpectral, SampleMatchesTheLibraryAndInfoReportsJoints) {
   const CliRun s = run("sample lobes.json --grid 5");
   ASSERT_EQ(s.code, 0) << s.err;
   const Json j = Json::parse(s.out);
-  const auto model = std::get<CrossSectionModel>(loadModel(work_.file("lobes.json")));
+  const auto model = loadModel(work_.file("lobes.json")).get<CrossSectionModel>();
   const CrossSectionChain chain = solveModel(model, "lobes.json");
   ASSERT_EQ(j["patches"].size(), chain.patches.size());
   for (std::size_t k = 0; k < chain.patches.size(); ++k) {

@@ -38,7 +38,7 @@ std::string netModel(std::uint32_t nu, std::uint32_t nv, F f, const std::string&
 std::string refusal(const std::string& text) {
   try {
     const AnyModel any = parseModel(text, "m.json");
-    solveBSplineModel(std::get<BSplinePdeModel>(any), "m.json");
+    solveBSplineModel(any.get<BSplinePdeModel>(), "m.json");
   } catch (const ModelError& e) {
     return e.what();
   }
@@ -58,7 +58,7 @@ TEST(BSplinePdeIo, NetFormSolvesAndKeepsTheGivenPoints) {
   for (const char* knots :
        {R"("uniform")", R"("clamped")", R"({"u": "uniform", "v": "clamped"})"}) {
     const AnyModel any = parseModel(netModel(6, 4, f, knots), "m.json");
-    const auto& m = std::get<BSplinePdeModel>(any);
+    const auto& m = any.get<BSplinePdeModel>();
     EXPECT_EQ(m.form, BSplinePdeModel::Form::Net);
     EXPECT_EQ(m.net.nu, 6u);
     EXPECT_EQ(m.net.nv, 4u);
@@ -70,8 +70,9 @@ TEST(BSplinePdeIo, NetFormSolvesAndKeepsTheGivenPoints) {
       for (std::uint32_t j = 0; j <= 4; ++j)
         if (m.net.given(i, j)) EXPECT_EQ(s.pieces[0].net()(i, j), f(i, j));
   }
-  const BSplinePdeModel mixed = std::get<BSplinePdeModel>(
-      parseModel(netModel(3, 3, f, R"({"u": "uniform", "v": "clamped"})"), "m.json"));
+  const BSplinePdeModel mixed =
+      (parseModel(netModel(3, 3, f, R"({"u": "uniform", "v": "clamped"})"), "m.json"))
+          .get<BSplinePdeModel>();
   EXPECT_EQ(mixed.knots.uKnots, KnotType::Uniform);
   EXPECT_EQ(mixed.knots.vKnots, KnotType::Clamped);
 }
@@ -102,7 +103,7 @@ TEST(BSplinePdeIo, BoundaryFormReproducesABicubicFromCurvesAndTangents) {
   doc += R"(, "uMinSecond": {"tangent": )" + samples([&](double t) { return du(0, t); }) + "}";
   doc += R"(, "vMinSecond": {"tangent": )" + samples([&](double t) { return dv(t, 0); }) + "}}}";
   const AnyModel any = parseModel(doc, "m.json");
-  const SolvedBSplinePde s = solveBSplineModel(std::get<BSplinePdeModel>(any), "m.json");
+  const SolvedBSplinePde s = solveBSplineModel(any.get<BSplinePdeModel>(), "m.json");
   ASSERT_EQ(s.pieces.size(), 1u);
   // Tangent samples are linear between 41 points: the second rows are that close (λ/3 · h²).
   for (double u = 0; u <= 1.0; u += 0.125)
@@ -136,7 +137,7 @@ TEST(BSplinePdeIo, BlendsTessellateIntoOneWatertightMesh) {
   for (const auto& [doc, pieces, closedV] :
        {std::tuple{four, 4u, false}, std::tuple{closed, 2u, true}}) {
     const SolvedBSplinePde s =
-        solveBSplineModel(std::get<BSplinePdeModel>(parseModel(doc, "m.json")), "m.json");
+        solveBSplineModel(parseModel(doc, "m.json").get<BSplinePdeModel>(), "m.json");
     ASSERT_EQ(s.pieces.size(), pieces);
     EXPECT_EQ(s.closedV, closedV);
     ASSERT_TRUE(s.c1Gap.has_value());
@@ -165,10 +166,10 @@ TEST(BSplinePdeIo, SerializedModelsReadBackTheSame) {
            std::filesystem::path(PDESURF_SOURCE_DIR) / "examples")) {
     const std::string path = entry.path().string();
     if (path.find("bspline-") == std::string::npos) continue;
-    const BSplinePdeModel model = std::get<BSplinePdeModel>(loadModel(path));
+    const BSplinePdeModel model = loadModel(path).get<BSplinePdeModel>();
     const std::string text = serializeModel(model);
     const AnyModel again = parseModel(text, "again.json");
-    const auto& back = std::get<BSplinePdeModel>(again);
+    const auto& back = again.get<BSplinePdeModel>();
     EXPECT_EQ(serializeModel(back), text) << path;
     EXPECT_EQ(back.form, model.form) << path;
     const SolvedBSplinePde a = solveBSplineModel(model, path), b = solveBSplineModel(back, path);

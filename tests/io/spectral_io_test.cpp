@@ -51,7 +51,7 @@ std::string refusal(const std::string& text) {
 
 TEST(SpectralIo, ParsesAUgailModelWithItsDefaults) {
   const AnyModel any = parseModel(ugail4(), "m.json");
-  const auto& m = std::get<SpectralModel>(any);
+  const auto& m = any.get<SpectralModel>();
   EXPECT_EQ(m.op.kind, OperatorKind::Ugail);
   EXPECT_EQ(m.op.power, 2u);
   EXPECT_EQ(m.op.a, 2.0);  // Ugail's a defaults to N (seed 003 §3.0.2)
@@ -81,7 +81,7 @@ TEST(SpectralIo, ParsesFuCrossSectionsAndPointCurves) {
           "curves": [{}, {}, {}, {}, {}, {}]}})",
       pointCircle(1, 0, 12), pointCircle(1.2, 1, 12), pointCircle(0.9, 2, 12),
       pointCircle(1.1, 3, 12), pointCircle(1, 4, 12), pointCircle(0.8, 5, 12));
-  const auto m = std::get<CrossSectionModel>(parseModel(text, "c.json"));
+  const auto m = parseModel(text, "c.json").get<CrossSectionModel>();
   EXPECT_EQ(m.name, "c");
   EXPECT_EQ(m.options.a, -0.5);
   EXPECT_EQ(m.options.modes, 3u);
@@ -194,12 +194,12 @@ TEST(SpectralIo, GlobalChainOptionsRoundTripAndAreChecked) {
       R"({{"type": "cross-sections", "spacing": "mean-distance", "ends": "estimated",
            "u": [0, 1, 3, 4.5], "curves": {}}})",
       curves);
-  const auto parsed = std::get<CrossSectionModel>(parseModel(text, "m.json"));
+  const auto parsed = parseModel(text, "m.json").get<CrossSectionModel>();
   EXPECT_EQ(parsed.options.method, ChainMethod::Global);  // the default
   EXPECT_EQ(parsed.options.spacing, ChainSpacing::MeanDistance);
   EXPECT_EQ(parsed.options.ends, ChainEnds::Estimated);
   EXPECT_EQ(parsed.options.u, (std::vector<double>{0, 1, 3, 4.5}));
-  const auto again = std::get<CrossSectionModel>(parseModel(serializeModel(parsed), "again.json"));
+  const auto again = parseModel(serializeModel(parsed), "again.json").get<CrossSectionModel>();
   EXPECT_EQ(again.options.method, ChainMethod::Global);
   EXPECT_EQ(again.options.spacing, ChainSpacing::MeanDistance);
   EXPECT_EQ(again.options.ends, ChainEnds::Estimated);
@@ -225,7 +225,7 @@ TEST(SpectralIo, SolverRefusalsNameTheFile) {
       R"({{"type": "spectral", "operator": "ugail", "N": 1, "placement": "chord-length",
           "modes": 1, "conditions": [{{"curve": {}}}, {{"curve": {}}}]}})",
       circle(1, 0), circle(1, 0));
-  const auto m = std::get<SpectralModel>(parseModel(text, "p.json"));
+  const auto m = parseModel(text, "p.json").get<SpectralModel>();
   try {
     solveModel(m, "p.json");
     FAIL() << "solved a patch through two coinciding curves";
@@ -239,7 +239,7 @@ TEST(SpectralIo, VertexFrameFilesStillParseThroughParseModel) {
   const std::string text = R"({"type": "vertex-frames",
     "vertices": [[0,0,0],[1,0,0],[2,0,0],[2,1,0],[2,2,0],[1,2,0],[0,2,0],[0,1,0]],
     "frames": [{"vertices": [0,1,2,3,4,5,6,7]}]})";
-  EXPECT_TRUE(std::holds_alternative<VertexFrameModel>(parseModel(text, "v.json")));
+  EXPECT_TRUE(parseModel(text, "v.json").is<VertexFrameModel>());
   EXPECT_NE(refusal(R"({"type": 3})").find("$.type: expected a string"), std::string::npos);
 }
 

@@ -27,11 +27,10 @@ bool sameMesh(const Mesh& a, const Mesh& b) {
 
 /// The engine's own mesh of a solved model, by its type: what the model layer must give.
 Mesh engineMesh(const SolvedModel& solved, std::uint32_t resolution) {
-  if (const auto* s = std::get_if<VertexFrameSurface>(&solved.solved()))
+  if (const auto* s = solved.surface().as<VertexFrameSurface>())
     return tessellate(*s, {resolution});
-  if (const auto* s = std::get_if<SolvedSpectral>(&solved.solved()))
-    return tessellate(*s, resolution);
-  return tessellate(std::get<SolvedBSplinePde>(solved.solved()), resolution);
+  if (const auto* s = solved.surface().as<SolvedSpectral>()) return tessellate(*s, resolution);
+  return tessellate(solved.surface().get<SolvedBSplinePde>(), resolution);
 }
 
 TEST(Model, EveryExampleSolvesTessellatesAndSamplesThroughOneType) {
@@ -61,7 +60,7 @@ TEST(Model, EveryExampleSolvesTessellatesAndSamplesThroughOneType) {
 TEST(Model, OverlayDrawsControlPolygonsOfBSplinesAndNothingForFrames) {
   const SolvedModel bspline = loadAndSolve(example("bspline-blend.json"));
   std::size_t lines = 0;
-  for (const BSplineSurface& piece : std::get<SolvedBSplinePde>(bspline.solved()).pieces)
+  for (const BSplineSurface& piece : bspline.surface().get<SolvedBSplinePde>().pieces)
     lines += piece.net().nu + 1 + piece.net().nv + 1;
   EXPECT_EQ(overlay(bspline).curves.size(), lines);
   EXPECT_TRUE(overlay(bspline).spines.empty());
@@ -73,7 +72,7 @@ TEST(Model, OverlayDrawsControlPolygonsOfBSplinesAndNothingForFrames) {
 
 TEST(Model, SeedFrameOutOfRangeIsRefusedForFramesOnly) {
   const AnyModel mug = loadModel(example("mug.json"));
-  const std::size_t frames = std::get<VertexFrameModel>(mug).frames.size();
+  const std::size_t frames = mug.get<VertexFrameModel>().frames.size();
   SolveOptions options;
   options.seedFrame = static_cast<std::uint32_t>(frames);
   EXPECT_THROW(checkSolveOptions(mug, options), std::out_of_range);
@@ -107,7 +106,7 @@ TEST(ModelSession, BSplineModelsAreSolvedAsThemselvesAndTransformWithUndo) {
   ModelSession session(loadModel(example("bspline-dome.json")), "dome");
   EXPECT_FALSE(session.editable());
   EXPECT_EQ(session.solved().spectral(), nullptr);
-  const auto* solved = std::get_if<SolvedBSplinePde>(&session.solved().solved());
+  const auto* solved = session.solved().surface().as<SolvedBSplinePde>();
   ASSERT_NE(solved, nullptr);
   ASSERT_FALSE(solved->pieces.empty());
   const Mesh before = tessellate(session.solved(), {9});

@@ -164,7 +164,7 @@ class VertexFrameExport : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(VertexFrameExport, ExactWithoutForcesWithinToleranceWithForces) {
   const AnyModel any = loadModel(example(GetParam()));
-  const VertexFrameSurface surface = solve(std::get<VertexFrameModel>(any));
+  const VertexFrameSurface surface = solve(any.get<VertexFrameModel>());
   const double diagonal = surfaceBounds(surface).diagonal();
   std::mt19937 rng(5);
   for (double relative : {kDefaultRelativeExportTolerance, 1e-6}) {
@@ -206,7 +206,7 @@ INSTANTIATE_TEST_SUITE_P(Examples, VertexFrameExport,
 
 TEST(VertexFrameExport, ForceFreeExamplesAreExact) {
   for (const char* name : {"mug.json", "vase.json"}) {
-    const VertexFrameSurface surface = solve(std::get<VertexFrameModel>(loadModel(example(name))));
+    const VertexFrameSurface surface = solve(loadModel(example(name)).get<VertexFrameModel>());
     const NurbsModel model = toNurbs(surface);
     EXPECT_EQ(model.exactCount(), model.faces.size()) << name;
     EXPECT_LE(model.maxDeviation(), kExactNurbsTolerance * model.diagonal) << name;
@@ -278,7 +278,7 @@ TEST(Approximate, ACreaseGetsATripleKnotAndCostsNoRefinement) {
 
 TEST(VertexFrameExport, AToleranceTooSmallThrowsNamingThePatch) {
   const VertexFrameSurface surface =
-      solve(std::get<VertexFrameModel>(loadModel(example("sculpt.json"))));
+      solve(loadModel(example("sculpt.json")).get<VertexFrameModel>());
   NurbsExportOptions options;
   options.tolerance = 1e-15;
   try {
@@ -292,7 +292,7 @@ TEST(VertexFrameExport, AToleranceTooSmallThrowsNamingThePatch) {
 
 TEST(VertexFrameExport, KeepBestWritesTheFinestFitOfAFaceOverTheTolerance) {
   const VertexFrameSurface surface =
-      solve(std::get<VertexFrameModel>(loadModel(example("sculpt.json"))));
+      solve(loadModel(example("sculpt.json")).get<VertexFrameModel>());
   NurbsExportOptions options;
   options.tolerance = 1e-15;
   options.maxSpans = 8;

@@ -142,8 +142,7 @@ class RoundTrip : public ::testing::TestWithParam<CadFormat> {
 };
 
 TEST_P(RoundTrip, ForceFreeVertexFramesAreExact) {
-  const VertexFrameSurface surface =
-      solve(std::get<VertexFrameModel>(loadModel(example("mug.json"))));
+  const VertexFrameSurface surface = solve(loadModel(example("mug.json")).get<VertexFrameModel>());
   const NurbsModel model = toNurbs(surface);
   const std::string path = file("mug");
   const CadExportReport report = writeCad(model, path, GetParam());
@@ -154,7 +153,7 @@ TEST_P(RoundTrip, ForceFreeVertexFramesAreExact) {
 
 TEST_P(RoundTrip, ForcesAreWithinTheTolerance) {
   for (const char* name : {"sculpt.json", "grid-forces.json"}) {
-    const VertexFrameSurface surface = solve(std::get<VertexFrameModel>(loadModel(example(name))));
+    const VertexFrameSurface surface = solve(loadModel(example(name)).get<VertexFrameModel>());
     NurbsExportOptions options;
     options.tolerance = 1e-5 * surfaceBounds(surface).diagonal();
     const NurbsModel model = toNurbs(surface, options);
@@ -261,7 +260,7 @@ TEST(Sewing, EveryVertexFrameExampleKeepsExactlyItsUnsharedEdgesFree) {
   for (const auto& entry : std::filesystem::directory_iterator(example(""))) {
     if (entry.path().extension() != ".json") continue;
     const AnyModel any = loadModel(entry.path().string());
-    const auto* model = std::get_if<VertexFrameModel>(&any);
+    const auto* model = any.as<VertexFrameModel>();
     if (!model) continue;
     const VertexFrameSurface surface = solve(*model);
     std::size_t unshared = 0;
@@ -284,8 +283,7 @@ TEST(CadFormatFromPath, KnowsStepAndIgesExtensionsInAnyCase) {
 }
 
 TEST(WriteCad, AnUnwritablePathThrowsAndLeavesNothing) {
-  const VertexFrameSurface surface =
-      solve(std::get<VertexFrameModel>(loadModel(example("mug.json"))));
+  const VertexFrameSurface surface = solve(loadModel(example("mug.json")).get<VertexFrameModel>());
   testing::TempDir dir;
   EXPECT_THROW(writeCad(toNurbs(surface), dir.file("missing/x.step"), CadFormat::Step), CadError);
   EXPECT_TRUE(dir.entries().empty());

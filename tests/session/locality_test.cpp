@@ -107,7 +107,7 @@ std::string vec(const Vec3& p) { return fmt::format("[{},{},{}]", p.x(), p.y(), 
 /// The drags of a model: one of each kind of handle the studio shows for its type.
 std::vector<Drag> dragsOf(const AnyModel& model, const Vec3& step) {
   std::vector<Drag> out;
-  if (const auto* m = std::get_if<VertexFrameModel>(&model)) {
+  if (const auto* m = model.as<VertexFrameModel>()) {
     const std::uint32_t v = m->frames[m->frames.size() / 2].vertices[1];
     out.push_back({"vertex",
                    fmt::format(R"({{"op":"move-vertex","vertex":{},"position":{}}})", v,
@@ -133,15 +133,15 @@ std::vector<Drag> dragsOf(const AnyModel& model, const Vec3& step) {
          fmt::format(R"({{"op":"transform-curve","curve":{},"translate":{}}})", index, vec(step)),
          curveCentre(*t.input), kCurveRatio});
   };
-  if (const auto* m = std::get_if<CrossSectionModel>(&model)) {
+  if (const auto* m = model.as<CrossSectionModel>()) {
     closedCurve(static_cast<std::uint32_t>(m->curves.size() / 2), "section");
-  } else if (const auto* m = std::get_if<SpectralModel>(&model)) {
+  } else if (const auto* m = model.as<SpectralModel>()) {
     std::vector<std::uint32_t> positions;  // the position conditions
     for (std::uint32_t i = 0; i < m->conditions.size(); ++i)
       if (m->conditions[i].derivative == 0) positions.push_back(i);
     closedCurve(positions[positions.size() / 2], "condition");
   } else {
-    const auto& b = std::get<BSplinePdeModel>(model);
+    const auto& b = model.get<BSplinePdeModel>();
     if (b.form == BSplinePdeModel::Form::Net) {
       const std::uint32_t j = b.net.nv / 2;
       out.push_back({"control point",
@@ -187,7 +187,7 @@ TEST(Locality, EveryHandleOfEveryExampleMovesTheSurfaceLocallyAndBoundedly) {
     const std::size_t patches = solved.frames() ? solved.frames()->patches.size()
                                 : solved.spectral()
                                     ? solved.spectral()->patchCount()
-                                    : std::get<SolvedBSplinePde>(solved.solved()).pieces.size();
+                                    : solved.surface().get<SolvedBSplinePde>().pieces.size();
     for (const Drag& drag : dragsOf(s.model(), step)) {
       SCOPED_TRACE(drag.kind);
       if (!advice.empty()) {

@@ -80,7 +80,7 @@ std::string pointTube() {
 TEST(ShapeEdits, MovedCurvePointsAreInterpolatedAndUndoRestoresTheBytes) {
   ModelSession s(parseModel(pointTube(), "tube"), "tube");
   const std::string original = serializeModel(s.model());
-  const auto& condition = std::get<SpectralModel>(s.model()).conditions[3];
+  const auto& condition = s.model().get<SpectralModel>().conditions[3];
   const Vec3 was = std::get<SampledCurve>(condition.curve).points[5];
   const Vec3 to = was + Vec3(0.02, -0.01, 0.03);
   edit(
@@ -106,7 +106,7 @@ TEST(ShapeEdits, FourierCurvesTurnWholeAndDerivativeCurvesTakeTheLinearPartOnly)
   ModelSession s = open(docFile("tube.json"));
   const std::string original = serializeModel(s.model());
   edit(s, R"({"op":"transform-curve","curve":2,"translate":[0.5,0,0.25]})");
-  const auto& m = std::get<SpectralModel>(s.model());
+  const auto& m = s.model().get<SpectralModel>();
   const auto& moved = std::get<FourierCurve>(m.conditions[2].curve);
   EXPECT_EQ(moved.a0, Vec3(0.5, 0, 1.25));
   EXPECT_EQ(moved.a[0], Vec3(0.5, 0, 0));  // modes are directions: a translation leaves them
@@ -117,7 +117,7 @@ TEST(ShapeEdits, FourierCurvesTurnWholeAndDerivativeCurvesTakeTheLinearPartOnly)
   edit(
       s,
       R"({"op":"transform-curve","curve":1,"rotate":{"axis":[0,1,0],"degrees":90},"translate":[5,5,5]})");
-  const auto& d = std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[1].curve);
+  const auto& d = std::get<FourierCurve>(s.model().get<SpectralModel>().conditions[1].curve);
   EXPECT_LT((d.a0 - Vec3(2, 0, 0)).norm(), 1e-15);
   ASSERT_TRUE(s.undo());
   ASSERT_TRUE(s.undo());
@@ -128,7 +128,7 @@ TEST(ShapeEdits, ACurveDragFromTheGroupStartIsAbsoluteAndOneUndoStep) {
   ModelSession s = open(docFile("tube.json"));
   const std::string original = serializeModel(s.model());
   const auto top = [&] {
-    return std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[2].curve);
+    return std::get<FourierCurve>(s.model().get<SpectralModel>().conditions[2].curve);
   };
   // Three steps of one drag, each the whole offset so far: the last one counts alone.
   for (const char* dx : {"0.1", "0.45", "0.3"})
@@ -161,7 +161,7 @@ TEST(ShapeEdits, ACurveDragFromTheGroupStartIsAbsoluteAndOneUndoStep) {
   EXPECT_EQ(serializeModel(s.model()), original);
   // The same on a blend's B-spline curve (its corners stay shared with the other curves).
   ModelSession blend = open(testing::example("bspline-blend.json"));
-  const auto uMin = [&] { return std::get<BSplinePdeModel>(blend.model()).curves[0].points; };
+  const auto uMin = [&] { return blend.model().get<BSplinePdeModel>().curves[0].points; };
   const auto before = uMin();
   for (const char* dz : {"0.2", "0.1"})
     edit(
@@ -170,7 +170,7 @@ TEST(ShapeEdits, ACurveDragFromTheGroupStartIsAbsoluteAndOneUndoStep) {
             R"({{"op":"transform-curve","curve":"uMin","translate":[0,0,{}],"from":"group-start","group":"g"}})",
             dz));
   for (std::size_t k = 0; k < before.size(); ++k) EXPECT_EQ(uMin()[k], before[k] + Vec3(0, 0, 0.1));
-  EXPECT_EQ(std::get<BSplinePdeModel>(blend.model()).curves[2].points.front(), uMin().front());
+  EXPECT_EQ(blend.model().get<BSplinePdeModel>().curves[2].points.front(), uMin().front());
 }
 
 TEST(ShapeEdits, CurveTransformsAreRefusedWithThePathOfWhatIsWrong) {
@@ -234,7 +234,7 @@ TEST(ShapeEdits, AFourierCurvesCoefficientsAreSetAndTheSurfaceLeavesAlongThem) {
   // The tube leaves its bottom circle straight up, x_u(0, v) = (0, 0, 2): tilted toward x.
   edit(s, R"({"op":"set-fourier","curve":1,"a0":[0.5,0,2],"group":"drag"})");
   edit(s, R"({"op":"set-fourier","curve":1,"a0":[0.75,0,2],"group":"drag"})");
-  const auto& d = std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[1].curve);
+  const auto& d = std::get<FourierCurve>(s.model().get<SpectralModel>().conditions[1].curve);
   EXPECT_EQ(d.a0, Vec3(0.75, 0, 2));
   EXPECT_TRUE(d.a.empty());
   for (double v : {0.0, 1.0, 2.5})
@@ -242,7 +242,7 @@ TEST(ShapeEdits, AFourierCurvesCoefficientsAreSetAndTheSurfaceLeavesAlongThem) {
   EXPECT_EQ(s.undoDepth(), 1u);  // one drag
   // The lists replace the curve's whole.
   edit(s, R"({"op":"set-fourier","curve":2,"a":[[0.25,0,0],[0,0,0.1]],"b":[[0,0.25,0]]})");
-  const auto& top = std::get<FourierCurve>(std::get<SpectralModel>(s.model()).conditions[2].curve);
+  const auto& top = std::get<FourierCurve>(s.model().get<SpectralModel>().conditions[2].curve);
   EXPECT_EQ(top.a.size(), 2u);
   EXPECT_EQ(top.a[1], Vec3(0, 0, 0.1));
   EXPECT_EQ(top.b, (std::vector<Vec3>{Vec3(0, 0.25, 0), Vec3::Zero()}));  // as the file pads
@@ -298,7 +298,7 @@ TEST(ShapeEdits, OperatorChangesSolveOrAreRefusedWithTheReason) {
   EXPECT_NE(refusal(chain, R"({"op":"set-operator","N":3})", &path).find("unknown field \"N\""),
             std::string::npos);
   edit(chain, R"({"op":"set-operator","a":2})");
-  EXPECT_EQ(std::get<CrossSectionModel>(chain.model()).options.a, 2.0);
+  EXPECT_EQ(chain.model().get<CrossSectionModel>().options.a, 2.0);
 }
 
 TEST(ShapeEdits, SpineEditsAreTheFilesFieldAndMatchTheSpineCommand) {
@@ -385,7 +385,7 @@ TEST(ShapeEdits, SectionsAreAddedOnTheSurfaceAndRemoved) {
   const std::string original = serializeModel(s.model());
   const SolvedModel before = s.solved();
   edit(s, R"({"op":"add-section","index":2})");
-  const auto& m = std::get<CrossSectionModel>(s.model());
+  const auto& m = s.model().get<CrossSectionModel>();
   ASSERT_EQ(m.curves.size(), 5u);
   // The new section lies on the old surface half way along the chain, and the new chain
   // passes through it and through every old section.
@@ -407,7 +407,7 @@ TEST(ShapeEdits, SectionsAreAddedOnTheSurfaceAndRemoved) {
   EXPECT_EQ(serializeModel(s.model()), original);
   // A section turned whole; the c2 chain cannot lose a section below 4.
   edit(s, R"({"op":"transform-curve","curve":0,"scale":1.5,"center":[0,0,0]})");
-  EXPECT_EQ(std::get<SampledCurve>(std::get<CrossSectionModel>(s.model()).curves[0]).points[0],
+  EXPECT_EQ(std::get<SampledCurve>(s.model().get<CrossSectionModel>().curves[0]).points[0],
             Vec3(1.5, 0, 0));
   std::string path;
   Json doc = Json::parse(serializeModel(open(docFile("column.json")).model()));
@@ -424,11 +424,11 @@ TEST(ShapeEdits, GivenControlPointsMoveAndTheInnerOnesAreSolvedAgain) {
   const std::string original = serializeModel(s.model());
   const auto innerBefore = s.solved();
   edit(s, R"({"op":"move-control-points","points":[[1,2],[4,4]],"positions":[[1,2,0.4],[4,4,1]]})");
-  const SolvedBSplinePde& solved = std::get<SolvedBSplinePde>(s.solved().solved());
+  const SolvedBSplinePde& solved = s.solved().surface().get<SolvedBSplinePde>();
   const ControlNet& net = solved.pieces.at(0).net();
   EXPECT_EQ(net(1, 2), Vec3(1, 2, 0.4));
   EXPECT_EQ(net(4, 4), Vec3(4, 4, 1));
-  const ControlNet& old = std::get<SolvedBSplinePde>(innerBefore.solved()).pieces.at(0).net();
+  const ControlNet& old = innerBefore.surface().get<SolvedBSplinePde>().pieces.at(0).net();
   EXPECT_GT((net(2, 2) - old(2, 2)).norm(), 1e-3);  // the inner points followed
   std::string path;
   EXPECT_NE(
@@ -445,7 +445,7 @@ TEST(ShapeEdits, BoundaryAndBlendCurvesMove) {
     SCOPED_TRACE(file);
     ModelSession s = open(testing::example(file));
     const std::string original = serializeModel(s.model());
-    const auto& m = std::get<BSplinePdeModel>(s.model());
+    const auto& m = s.model().get<BSplinePdeModel>();
     const char* name = m.form == BSplinePdeModel::Form::ClosedBlend ? "start" : "vMin";
     // An inner point of the curve (its ends are corners other curves share).
     edit(s, fmt::format(R"({{"op":"transform-curve","curve":"{}","translate":[0,0,0.1]}})", name));
@@ -465,7 +465,7 @@ TEST(ShapeEdits, BoundaryAndBlendCurvesMove) {
 
 TEST(ShapeEdits, ABlendsCornerMovesInEveryCurveThatSharesIt) {
   ModelSession s = open(testing::example("bspline-blend.json"));
-  const auto curves = [&] { return std::get<BSplinePdeModel>(s.model()).curves; };
+  const auto curves = [&] { return s.model().get<BSplinePdeModel>().curves; };
   const Vec3 corner = curves()[0].points.front();
   const Vec3 to = corner + Vec3(0, 0, 0.1);
   std::size_t sharing = 0;  // curve ends at that corner
@@ -484,7 +484,7 @@ TEST(ShapeEdits, ABlendsCornerMovesInEveryCurveThatSharesIt) {
   }
   EXPECT_EQ(moved, 2u);
   // The solved blend passes through the moved corner.
-  const SolvedBSplinePde& solved = std::get<SolvedBSplinePde>(s.solved().solved());
+  const SolvedBSplinePde& solved = s.solved().surface().get<SolvedBSplinePde>();
   double nearest = 1e300;
   for (const BSplineSurface& piece : solved.pieces)
     for (double u : {0.0, 1.0})
@@ -501,7 +501,7 @@ namespace {
 TEST(ShapeEdits, AFalloffBendsAClosedCurveRoundTheMovedPointFromTheDragsStart) {
   ModelSession s = open(testing::example("vase-sections.json"));
   const auto section = [&] {
-    return std::get<SampledCurve>(std::get<CrossSectionModel>(s.model()).curves[6]).points;
+    return std::get<SampledCurve>(s.model().get<CrossSectionModel>().curves[6]).points;
   };
   const std::vector<Vec3> was = section();
   const std::size_t n = was.size();

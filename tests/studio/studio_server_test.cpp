@@ -933,7 +933,7 @@ TEST_F(StudioServerTest, SpectralModelsAreTransformedUndoneSavedAndJournaled) {
   ASSERT_EQ(post("/api/save")->status, 200);
   EXPECT_FALSE(fs::exists(root_ / "tube.json.autosave"));
   const AnyModel saved = parseModel(readText(root_ / "tube.json"), "saved");
-  ASSERT_TRUE(std::holds_alternative<SpectralModel>(saved));
+  ASSERT_TRUE(saved.is<SpectralModel>());
   EXPECT_EQ(Json::parse(readText(root_ / "tube.json")), m["model"]);
   EXPECT_EQ(model()["dirty"], false);
 }
@@ -987,10 +987,11 @@ TEST_F(StudioServerTest, BSplineModelsAreShownTransformedAndSaved) {
     EXPECT_NEAR(after.positions[i], before.positions[i] + (i % 3 == 0 ? 1 : 0), 1e-5);
   ASSERT_EQ(post("/api/save")->status, 200);
   const AnyModel saved = parseModel(readText(root_ / "tube.json"), "saved");
-  const auto& tube = std::get<BSplinePdeModel>(saved);
+  const auto& tube = saved.get<BSplinePdeModel>();
   EXPECT_EQ(tube.form, BSplinePdeModel::Form::ClosedBlend);
-  const BSplinePdeModel original = std::get<BSplinePdeModel>(
-      loadModel((fs::path(PDESURF_SOURCE_DIR) / "examples" / "bspline-tube.json").string()));
+  const BSplinePdeModel original =
+      (loadModel((fs::path(PDESURF_SOURCE_DIR) / "examples" / "bspline-tube.json").string()))
+          .get<BSplinePdeModel>();
   for (std::size_t c = 0; c < 2; ++c)
     for (std::size_t k = 0; k < tube.curves[c].points.size(); ++k)
       EXPECT_LT((tube.curves[c].points[k] - original.curves[c].points[k] - Vec3(1, 0, 0)).norm(),

@@ -1,6 +1,6 @@
 // The reports of "spectral" and "cross-sections" models: `build`'s summary and quality,
 // `info` (docs/spectral.md).
-#include "model/reports.hpp"
+#include "methods/reports.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// The per-type parts of report() and infoText() (include/pdesurf/model.hpp), private to
-// src/model/.
+// The spectral and B-spline PDE methods' report() and info() (method.hpp), private to
+// src/methods/.
 #pragma once
 
 #include <string>
@@ -7,10 +7,6 @@
 #include "pdesurf/model.hpp"
 
 namespace pdesurf::detail {
-
-ModelReport frameReport(const VertexFrameModel& model, const VertexFrameSurface& surface);
-std::string frameInfo(const SolvedModel& solved, const VertexFrameModel& model,
-                      const VertexFrameSurface& surface, bool json);
 
 ModelReport spectralReport(const SolvedSpectral& solved);
 std::string spectralInfo(const SolvedSpectral& solved, const std::string& path,

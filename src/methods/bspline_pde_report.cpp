@@ -1,5 +1,5 @@
 // The reports of "bspline-pde" models: `build`'s summary and quality, `info`.
-#include "model/reports.hpp"
+#include "methods/reports.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,78 @@
+// The "bspline-pde" method (include/pdesurf/method.hpp): its description and its solved
+// surface (SolvedBSplinePde: a surface or a blend of pieces).
+#include <span>
+
+#include "io/model_reader.hpp"
+#include "methods/builtin.hpp"
+#include "methods/reports.hpp"
+#include "pdesurf/bspline_pde_io.hpp"
+
+namespace pdesurf::detail {
+
+namespace {
+
+class SolvedBSplineSurface final
+    : public UnitSquarePatches<SolvedBSplinePde, &SolvedBSplinePde::pieces> {
+ public:
+  using UnitSquarePatches::UnitSquarePatches;
+
+  Mesh tessellate(const TessellateOptions& options) const override {
+    // The B-spline engine takes the samples per patch side.
+    return pdesurf::tessellate(value_, options.resolution);
+  }
+  std::vector<PatchSamples> sample(std::uint32_t n) const override {
+    std::vector<PatchSamples> out;
+    for (std::size_t k = 0; k < value_.pieces.size(); ++k) {
+      out.push_back(unitSamples(k, n, "patch"));
+      out.back().origin = value_.origin[k];  // the piece's origin in the blend
+    }
+    return out;
+  }
+  NurbsModel toNurbs(const NurbsExportOptions& options) const override {
+    return pdesurf::toNurbs(std::span<const BSplineSurface>(value_.pieces), options);
+  }
+  /// Reported as 0, as it always was for this method (no gap measure between pieces yet).
+  double largestC0Gap() const override { return 0.0; }
+  ModelOverlay overlay() const override {
+    ModelOverlay out;
+    // The control polygon of each piece: its rows and its columns.
+    for (const BSplineSurface& piece : value_.pieces) {
+      const ControlNet& net = piece.net();
+      for (int direction = 0; direction < 2; ++direction) {
+        const std::uint32_t lines = direction == 0 ? net.nu : net.nv;
+        const std::uint32_t along = direction == 0 ? net.nv : net.nu;
+        for (std::uint32_t a = 0; a <= lines; ++a) {
+          std::vector<Vec3> line;
+          for (std::uint32_t k = 0; k <= along; ++k)
+            line.push_back(direction == 0 ? net(a, k) : net(k, a));
+          out.curves.push_back(std::move(line));
+        }
+      }
+    }
+    return out;
+  }
+};
+
+class BSplinePdeMethod final
+    : public OptionlessMethod<BSplinePdeModel, SolvedBSplinePde, SolvedBSplineSurface> {
+ public:
+  BSplinePdeMethod()
+      : OptionlessMethod("bspline-pde", parseBSplinePdeDocument, solveBSplineModel) {}
+
+  ModelReport report(const SolvedModel& solved) const override {
+    return bsplineReport(solved.surface().get<SolvedBSplinePde>());
+  }
+  std::string info(const SolvedModel& solved, bool json) const override {
+    return bsplineInfo(solved.model().get<BSplinePdeModel>(),
+                       solved.surface().get<SolvedBSplinePde>(), solved.source(), json);
+  }
+};
+
+}  // namespace
+
+const SurfaceMethod& bsplinePdeMethod() {
+  static const BSplinePdeMethod method;
+  return method;
+}
+
+}  // namespace pdesurf::detail
