@@ -28,9 +28,8 @@ constexpr std::size_t kPoints = 4096;
 
 /// A force-free patch of the mug example (a real model's coefficients, not a toy).
 const pdesurf::VertexFramePatch& mugPatch() {
-  static const pdesurf::VertexFrameSurface surface =
-      pdesurf::solve(std::get<pdesurf::VertexFrameModel>(
-          pdesurf::loadModel(PDESURF_SOURCE_DIR "/examples/mug.json")));
+  static const pdesurf::VertexFrameSurface surface = pdesurf::solve(
+      pdesurf::loadModel(PDESURF_SOURCE_DIR "/examples/mug.json").get<pdesurf::VertexFrameModel>());
   return surface.patches[5];
 }
 

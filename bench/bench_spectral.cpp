@@ -109,8 +109,8 @@ void Order12_30x10_FromPoints(benchmark::State& s) {
 /// Chebyshev–Lobatto u: docs/examples.md; mode 1 in quad). Order40_40x10 above is the seed's
 /// own recipe (a = N = 20, uniform u, fitted curves: modes 1–6 in quad, docs/spectral.md).
 void kleinExample(benchmark::State& state, std::optional<double> a) {
-  auto model = std::get<pdesurf::SpectralModel>(
-      pdesurf::loadModel(PDESURF_SOURCE_DIR "/examples/klein-bottle.json"));
+  auto model = pdesurf::loadModel(PDESURF_SOURCE_DIR "/examples/klein-bottle.json")
+                   .get<pdesurf::SpectralModel>();
   if (a) model.op = pdesurf::SpectralOperator::ugail(model.op.power, a);
   std::vector<double> us(40), vs(10);
   for (int i = 0; i < 40; ++i) us[i] = i / 39.0;
