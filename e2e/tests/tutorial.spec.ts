@@ -14,6 +14,9 @@ import type { Studio } from './fixture';
 const ROUNDING = 1e-9;
 /** The C0 gap of frames that share their edges is rounding: the page shows it below this. */
 const C0_ROUNDING = 1e-9;
+/** Handles that moved less than this many pixels in 150 ms are at rest (a camera still
+ * fitting or damping moves them by more within a frame or two). */
+const SCREEN_REST = 0.5;
 /** The tutorial's size: at most about 60 actions (issue 27, item 4). */
 const MAX_ACTIONS = 60;
 /** The actions docs/studio-tutorial.md counts (its numbered steps). */
@@ -42,8 +45,21 @@ async function boxRow(page: Page, studio: Studio, z: number): Promise<void> {
   const m = await model(studio);
   const inside = row(m, z);
   const screen = async (vs: number[]) => Promise.all(vs.map((v) => hook<Point>(page, 'vertexScreen', v)));
+  const all = m.vertices.map((_, v) => v);
+  // The page holds the server's model (its vertex count) and the camera has come to rest (two
+  // readings of every handle's place 150 ms apart agree): a box drawn from places read while
+  // a reload or a fit is still on its way selects the wrong handles on a loaded machine.
+  await expect(page.getByTestId('status')).toContainText(`· ${m.vertices.length} vertices`);
+  await expect
+    .poll(async () => {
+      const a = await screen(all);
+      await page.waitForTimeout(150);
+      const b = await screen(all);
+      return Math.max(...a.map((p, i) => Math.hypot(p.x - b[i].x, p.y - b[i].y)));
+    })
+    .toBeLessThan(SCREEN_REST);
   const mine = await screen(inside);
-  const others = await screen(m.vertices.map((_, v) => v).filter((v) => !inside.includes(v)));
+  const others = await screen(all.filter((v) => !inside.includes(v)));
   const top = Math.min(...mine.map((p) => p.y)), bottom = Math.max(...mine.map((p) => p.y));
   const gap = Math.min(...others.map((p) => (p.y < top ? top - p.y : p.y > bottom ? p.y - bottom : Infinity)));
   const margin = Math.min(20, gap / 2);
@@ -107,6 +123,7 @@ test('the tutorial: a hat from New in at most 60 actions; the saved model has it
   await boxRow(page, studio, 0);
   await key(page, 'e');
   await expect.poll(async () => (await model(studio)).frames.length).toBe(24);
+  await expect(page.getByTestId('status')).toContainText('24 frames');
   await settle(page);
   await key(page, 'Shift+F'); // fit all: the new frames in view
   await page.waitForTimeout(400);
