@@ -1,20 +1,27 @@
 // pdesurf_accuracy: one ground truth of the accuracy-versus-storage benchmark
 // (docs/accuracy-storage.md, driven by scripts/accuracy). Fits vertex-frame models of growing
 // layouts, picks for each accuracy level the smallest that reaches it, finds the polygon and
-// NURBS peers at that model's RMS (apps/accuracy/peers.hpp), and prints JSON.
+// NURBS peers at that model's RMS (apps/accuracy/peers.hpp), and prints JSON. With --auto
+// (or --layout auto, no grid at all) each level also gets the automatic layout's target search
+// (include/pdesurf/auto_layout.hpp) and its own polygon peer; every model and peer gets its
+// folded area and RMS normal deviation against the truth (normalDeviation).
 #include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <numeric>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/auto_layout.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/rebuild.hpp"
 #include "pdesurf/section_rebuild.hpp"
@@ -41,8 +48,64 @@ struct Args {
   std::size_t samples = 30000;
   double budget = 300.0;  ///< CPU seconds of fitting per mesh before the sweep stops
   bool sections = false;
-  bool fitShape = false;  ///< fit a force, a1 and a2 per frame after the vertices (--fit-shape)
+  bool fitShape = false;    ///< fit a force, a1 and a2 per frame after the vertices (--fit-shape)
+  bool autoLayout = false;  ///< also the automatic layout's target search at each level
 };
+
+/// Samples per side of a B-spline peer's tessellation when its normals are measured.
+constexpr std::uint32_t kBSplineNormalSamples = 129;
+
+/// A mesh's normals against the truth's (normalDeviation): folded share of its area and RMS
+/// normal deviation in degrees.
+Json normalsJson(const Mesh& model, const Mesh& truth) {
+  const NormalDeviation n = normalDeviation(model, truth);
+  return {{"folded", n.foldedArea}, {"normal_deg", n.rmsDegrees}};
+}
+
+/// The truth's topology, counted from its triangles: Euler characteristic V − E + F, boundary
+/// edges (of one triangle) and boundary loops (connected chains of them).
+Json topologyJson(const Mesh& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = m.indices[3 * t + k], b = m.indices[3 * t + (k + 1) % 3];
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::uint32_t> parent(m.vertexCount());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto root = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::size_t boundaryEdges = 0;
+  std::set<std::uint32_t> boundaryVertices;
+  for (const auto& [e, n] : edges)
+    if (n == 1) {
+      ++boundaryEdges;
+      boundaryVertices.insert(e.first);
+      boundaryVertices.insert(e.second);
+      parent[root(e.first)] = root(e.second);
+    }
+  std::set<std::uint32_t> loops;
+  for (std::uint32_t v : boundaryVertices) loops.insert(root(v));
+  const auto euler = static_cast<long>(m.vertexCount()) - static_cast<long>(edges.size()) +
+                     static_cast<long>(m.triangleCount());
+  return {{"euler", euler}, {"boundary_edges", boundaryEdges}, {"boundary_loops", loops.size()}};
+}
+
+/// The polygon peer at `target` (accuracyRms) with its normals against the truth.
+Json polygonJson(const Mesh& truth, double target, const DistanceOptions& distance) {
+  const PolygonPeer polygon = simplifiedPeer(truth, target, distance);
+  Json out = {{"vertices", polygon.mesh.vertexCount()},
+              {"triangles", polygon.mesh.triangleCount()},
+              {"rms", polygon.rms},
+              {"bytes", polygon.bytes},
+              {"reached", polygon.reached},
+              {"coarser_rms", polygon.coarserRms},
+              {"trials", polygon.trials}};
+  out.update(normalsJson(polygon.mesh, truth));
+  return out;
+}
 
 /// The model without vertices no frame uses (the grid layout's frame centres): the storage
 /// counts what the surface needs.
@@ -150,8 +213,10 @@ int run(const Args& args) {
   std::vector<Candidate> sweep;
   double spent = 0.0;
   const double finest = *std::min_element(args.levels.begin(), args.levels.end());
+  const bool gridSweep = args.layout != "auto";
   for (std::uint32_t n : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 10u, 12u, 14u, 16u, 20u, 24u, 28u, 32u}) {
     // A grid needs 2 frames a side to bend; a torus 3 rows (2 would repeat their edges).
+    if (!gridSweep) break;
     if ((args.layout == "grid" && n < 2) || (args.layout == "torus" && n < 3)) continue;
     auto layout = makeLayout(n);
     if (!layout) break;
@@ -202,60 +267,97 @@ int run(const Args& args) {
               {"truth",
                {{"vertices", truth.vertexCount()},
                 {"triangles", truth.triangleCount()},
-                {"bytes", storageBytes(truth)}}},
+                {"bytes", storageBytes(truth)},
+                {"topology", topologyJson(truth)}}},
               {"samples", args.samples},
               {"sweep", Json::array()},
               {"sections_sweep", sectionSweep},
               {"levels", Json::array()}};
   for (const Candidate& c : sweep) out["sweep"].push_back(pdeJson(c));
+  const double middle = args.levels[args.levels.size() / 2];
+  auto writeImage = [&](const VertexFrameModel& model, const std::string& kind) {
+    std::filesystem::create_directories(args.images);
+    writeMesh(tessellate(solve(model), {kPatchResolution}),
+              args.images + "/" + args.name + "-" + kind + ".obj");
+    writeMesh(truth, args.images + "/" + args.name + "-truth.obj");
+  };
   for (double level : args.levels) {
-    // The smallest layout that reaches the level, else the best reached.
-    const Candidate* chosen = nullptr;
-    for (const Candidate& c : sweep)
-      if (c.rms <= level) {
-        chosen = &c;
-        break;
-      }
-    const bool reached = chosen != nullptr;
-    if (!chosen)
-      chosen = &*std::min_element(sweep.begin(), sweep.end(),
-                                  [](auto& a, auto& b) { return a.rms < b.rms; });
-    const double target = chosen->rms;
-    const PolygonPeer polygon = simplifiedPeer(truth, target, distance);
-    const auto samples = layoutSamples(solve(chosen->fitted), chosen->layout.grid, truth,
-                                       std::max<std::size_t>(args.samples, 20000));
-    const NurbsPeer nurbs = bsplinePeer(samples, chosen->layout.grid, truth, target, distance);
-    Json row = {{"level", level},
-                {"reached", reached},
-                {"pde", pdeJson(*chosen)},
-                {"polygon",
-                 {{"vertices", polygon.mesh.vertexCount()},
-                  {"triangles", polygon.mesh.triangleCount()},
-                  {"rms", polygon.rms},
-                  {"bytes", polygon.bytes},
-                  {"reached", polygon.reached},
-                  {"coarser_rms", polygon.coarserRms},
-                  {"trials", polygon.trials}}},
-                {"nurbs",
-                 {{"control_points", nurbs.surface.control.size()},
-                  {"net", fmt::format("{} × {}", nurbs.surface.nu, nurbs.surface.nv)},
-                  {"rms", nurbs.rms},
-                  {"bytes", nurbs.bytes},
-                  {"reached", nurbs.reached},
-                  {"coarser_rms", nurbs.coarserRms},
-                  {"trials", nurbs.trials}}}};
-    for (const Json& s : sectionSweep)
-      if (s["rms"].get<double>() <= level) {
-        row["sections"] = s;
-        break;
-      }
-    out["levels"].push_back(row);
-    if (!args.images.empty() && level == args.levels[args.levels.size() / 2]) {
-      std::filesystem::create_directories(args.images);
-      writeMesh(tessellate(solve(chosen->fitted), {kPatchResolution}),
-                args.images + "/" + args.name + "-pde.obj");
-      writeMesh(truth, args.images + "/" + args.name + "-truth.obj");
+    Json row = {{"level", level}};
+    if (!sweep.empty()) {
+      // The smallest layout that reaches the level, else the best reached.
+      const Candidate* chosen = nullptr;
+      for (const Candidate& c : sweep)
+        if (c.rms <= level) {
+          chosen = &c;
+          break;
+        }
+      const bool reached = chosen != nullptr;
+      if (!chosen)
+        chosen = &*std::min_element(sweep.begin(), sweep.end(),
+                                    [](auto& a, auto& b) { return a.rms < b.rms; });
+      const double target = chosen->rms;
+      const auto samples = layoutSamples(solve(chosen->fitted), chosen->layout.grid, truth,
+                                         std::max<std::size_t>(args.samples, 20000));
+      const NurbsPeer nurbs = bsplinePeer(samples, chosen->layout.grid, truth, target, distance);
+      row["reached"] = reached;
+      row["pde"] = pdeJson(*chosen);
+      row["pde"].update(normalsJson(tessellate(solve(chosen->fitted), {kPatchResolution}), truth));
+      row["polygon"] = polygonJson(truth, target, distance);
+      row["nurbs"] = {{"control_points", nurbs.surface.control.size()},
+                      {"net", fmt::format("{} × {}", nurbs.surface.nu, nurbs.surface.nv)},
+                      {"rms", nurbs.rms},
+                      {"bytes", nurbs.bytes},
+                      {"reached", nurbs.reached},
+                      {"coarser_rms", nurbs.coarserRms},
+                      {"trials", nurbs.trials}};
+      row["nurbs"].update(normalsJson(
+          tessellate(nurbs.surface, kBSplineNormalSamples, kBSplineNormalSamples), truth));
+      for (const Json& s : sectionSweep)
+        if (s["rms"].get<double>() <= level) {
+          row["sections"] = s;
+          break;
+        }
+      if (!args.images.empty() && level == middle) writeImage(chosen->fitted, "pde");
     }
+    if (!gridSweep || args.autoLayout) {
+      // The automatic layout: the smallest whose fit reaches the level both ways (one-way
+      // RMS values, as `rebuild --target-rms` reads its target) within the fold bound.
+      TargetSearchOptions o;
+      o.targetRms = level;
+      o.fit.fitShape = args.fitShape;
+      o.resolution = kPatchResolution;
+      o.distance = distance;
+      const double t0 = cpuMs();
+      const TargetSearch search = searchTargetRms(truth, o, args.mesh);
+      const double searchMs = cpuMs() - t0;
+      const AutoFit& best = search.best;
+      VertexFrameModel fitted = withoutUnusedVertices(best.fit.model);
+      fitted.name = args.name;
+      const double rms = accuracyRms(best.distance);
+      Json a = {{"frames", fitted.frames.size()},
+                {"vertices", fitted.vertices.size()},
+                {"rms", rms},
+                {"rms_model_to_mesh", best.distance.aToB.rmsRelative},
+                {"rms_mesh_to_model", best.distance.bToA.rmsRelative},
+                {"bytes", storageBytes(fitted)},
+                {"search_ms", searchMs},
+                {"trials", search.trials},
+                {"reached", search.reached},
+                {"rms_reached", search.rmsReached},
+                {"folds_prevented", best.foldsPrevented},
+                {"components", best.layout.components},
+                {"folded", best.normals.foldedArea},
+                {"normal_deg", best.normals.rmsDegrees}};
+      a["polygon"] = polygonJson(truth, rms, distance);
+      std::cerr << fmt::format(
+          "{}: automatic layout at {:.2f} %: {} frames, RMS {:.4f} %, {} "
+          "bytes, folded {:.3f} %, search {:.0f} s CPU\n",
+          args.name, 100 * level, fitted.frames.size(), 100 * rms, storageBytes(fitted),
+          100 * best.normals.foldedArea, searchMs / 1000);
+      row["auto"] = std::move(a);
+      if (!args.images.empty() && level == middle) writeImage(fitted, "auto");
+    }
+    out["levels"].push_back(row);
   }
   std::cout << out.dump(1) << '\n';
   return 0;
@@ -273,8 +375,12 @@ int main(int argc, char** argv) {
   app.add_option("mesh", args.mesh, "the ground truth (.off .obj .ply .stl)")->required();
   app.add_option("--name", args.name, "its name in the table")->required();
   app.add_option("--layout", args.layout,
-                 "grid (a disk), tube (a part by --axis --range --near), torus")
-      ->check(CLI::IsMember({"grid", "tube", "torus"}));
+                 "grid (a disk), tube (a part by --axis --range --near), torus, auto (the "
+                 "automatic layout alone: any mesh, no grid sweep, no NURBS peer)")
+      ->check(CLI::IsMember({"grid", "tube", "torus", "auto"}));
+  app.add_flag("--auto", args.autoLayout,
+               "also the automatic layout at each level (rebuild --target-rms), with its own "
+               "polygon peer");
   app.add_option("--axis", args.axis, "tube: the slicing axis")
       ->check(CLI::IsMember({"x", "y", "z"}));
   app.add_option("--range", args.range, "tube: the end planes")->expected(2);
