@@ -28,7 +28,8 @@ namespace pdesurf {
 ///   {"op": "weld-vertices", "vertices": [keep, remove]}
 ///   {"op": "weld-edges", "edges": [{"frame": 0, "side": 3}, {"frame": 5, "side": 1}]}
 ///   {"op": "flip-frames", "frames": [1]}
-///   {"op": "mirror-frames", "frames": [0, 1], "axis": "x"}  (copies across the plane x = 0)
+///   {"op": "mirror-frames", "frames": [0, 1], "axis": "x"}  (copies across the plane x = 0;
+///    "at": 1 across x = 1)
 /// A structure edit's indices and shape are checked here; what it would make is checked when
 /// the session applies it (restructure).
 /// Everything the model parser would check of the result is checked (indices in range,

@@ -95,13 +95,15 @@ struct FlipFrames {
   std::vector<std::uint32_t> frames;
 };
 
-/// Copies frames across the plane where coordinate `axis` (0: x, 1: y, 2: z) is 0: each copy's
-/// vertices mirrored, its u reversed (so it faces as its original's neighbours do), its
+/// Copies frames across the plane where coordinate `axis` (0: x, 1: y, 2: z) is `at` (0: the
+/// plane through the origin; the studio's plane through the model's centre sets it): each
+/// copy's vertices mirrored, its u reversed (so it faces as its original's neighbours do), its
 /// forces' f0 mirrored. Vertices on the plane (within kMirrorPlaneTolerance of the model's
 /// bounding-box diagonal) are not copied: the copies share them, so the seam is welded.
 struct MirrorFrames {
   std::vector<std::uint32_t> frames;
   int axis = 0;
+  double at = 0.0;
   static constexpr double kMirrorPlaneTolerance = 1e-6;
 };
 

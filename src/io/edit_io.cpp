@@ -88,6 +88,7 @@ std::optional<Edit> parseStructureEdit(const Reader& rd, const Json& doc, const 
     if (axis != "x" && axis != "y" && axis != "z")
       rd.fail("$.axis", fmt::format("expected \"x\", \"y\" or \"z\", found {}", axis.dump()));
     e.axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+    if (auto it = doc.find("at"); it != doc.end()) e.at = rd.number(*it, "$.at");
     return e;
   }
   if (name == "split-frame") {

@@ -382,14 +382,18 @@ VertexFrameModel mirrorFrames(const VertexFrameModel& model, const MirrorFrames&
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const Vec3& p : model.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const double onPlane = MirrorFrames::kMirrorPlaneTolerance * (hi - lo).norm();
-  const auto mirrored = [&](Vec3 p) {
-    p[e.axis] = -p[e.axis];
+  const auto mirrored = [&](Vec3 p) {  // a point across the plane
+    p[e.axis] = 2.0 * e.at - p[e.axis];
     return p;
+  };
+  const auto turned = [&](Vec3 f) {  // a vector (a force) across it
+    f[e.axis] = -f[e.axis];
+    return f;
   };
   VertexFrameModel next = model;
   std::map<std::uint32_t, std::uint32_t> copy;  // vertex → its mirror image
   const auto image = [&](std::uint32_t v) {
-    if (std::abs(model.vertices[v][e.axis]) <= onPlane) return v;  // on the seam: shared
+    if (std::abs(model.vertices[v][e.axis] - e.at) <= onPlane) return v;  // on the seam: shared
     auto [it, fresh] = copy.try_emplace(v, 0);
     if (fresh) {
       next.vertices.push_back(mirrored(model.vertices[v]));
@@ -401,7 +405,7 @@ VertexFrameModel mirrorFrames(const VertexFrameModel& model, const MirrorFrames&
   for (std::uint32_t k : e.frames) {
     Frame f = model.frames[k];
     for (std::uint32_t& v : f.vertices) v = image(v);
-    for (FrameForce& force : f.forces) force.f0 = mirrored(force.f0);
+    for (FrameForce& force : f.forces) force.f0 = turned(force.f0);
     flipU(f);  // a mirror image faces the other way: reversing u turns it back
     copyOf[k] = static_cast<std::uint32_t>(next.frames.size());
     next.frames.push_back(std::move(f));
@@ -409,7 +413,7 @@ VertexFrameModel mirrorFrames(const VertexFrameModel& model, const MirrorFrames&
   // A shared force over mirrored frames: its mirror image over their copies.
   for (const SharedForce& force : model.forces) {
     SharedForce twin;
-    twin.f0 = mirrored(force.f0);
+    twin.f0 = turned(force.f0);
     for (std::uint32_t k : force.frames)
       if (const auto it = copyOf.find(k); it != copyOf.end()) twin.frames.push_back(it->second);
     if (!twin.frames.empty()) next.forces.push_back(std::move(twin));

@@ -361,6 +361,55 @@ TEST(Structure, MirrorFramesCopiesAcrossThePlaneAndWeldsTheSeam) {
       contains(refusal(s, R"({"op":"mirror-frames","frames":[0],"axis":"w"})"), "expected \"x\""));
 }
 
+TEST(Structure, MirrorFramesAcrossAnOffsetPlaneSharesItsVertices) {
+  // The frame on x in [0, 1] mirrored across x = 1 (the plane through the centre of a model
+  // of it and its copy to come): the three vertices on x = 1 are shared, every other copied
+  // to (2 - x, y, z), and a force's f0 (a vector) turned, not moved with the plane.
+  VertexFrameModel one = newModel(NewModelOptions::Kind::Single, 1, 1);
+  for (Vec3& p : one.vertices) p.z() = 0.2 * p.x() * p.y();
+  one.frames[0].forces = {{Vec3(1, 0, 2), {0.1, 0.4, 0.2, 0.7}}};
+  ModelSession s{AnyModel(one)};
+  applyJson(s, R"({"op":"mirror-frames","frames":[0],"axis":"x","at":1})");
+  const VertexFrameModel& m = *s.frames();
+  ASSERT_EQ(m.frames.size(), 2u);
+  ASSERT_EQ(m.vertices.size(), 8u + 5u);
+  EXPECT_EQ(sharedEdges(m), 1u);
+  EXPECT_TRUE(facesOneWay(m));
+  EXPECT_LT(relativeGap(m), kC0RelativeTolerance);
+  for (std::size_t i = 0; i < 8; ++i) {
+    const std::uint32_t v = one.frames[0].vertices[i];
+    const Vec3 p = one.vertices[v];
+    if (p.x() == 1.0) {
+      // On the plane: the copy uses the original vertex itself.
+      EXPECT_NE(std::find(m.frames[1].vertices.begin(), m.frames[1].vertices.end(), v),
+                m.frames[1].vertices.end())
+          << "vertex " << v << " on x = 1 is not shared";
+    } else {
+      const Vec3 image(2.0 - p.x(), p.y(), p.z());
+      const bool found = std::any_of(m.vertices.begin() + 8, m.vertices.end(),
+                                     [&](const Vec3& q) { return q == image; });
+      EXPECT_TRUE(found) << "no copy of vertex " << v << " at x = " << image.x();
+    }
+  }
+  for (std::size_t v = 8; v < m.vertices.size(); ++v) EXPECT_GT(m.vertices[v].x(), 1.0);
+  EXPECT_EQ(m.frames[1].forces.at(0).f0, Vec3(-1, 0, 2));
+  const VertexFrameSurface surface = solve(m);
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) {
+      Vec3 p = surface.patches[0].position(i / 4.0, j / 4.0);
+      p.x() = 2.0 - p.x();
+      const Vec3 q = surface.patches[1].position(1.0 - i / 4.0, j / 4.0);
+      EXPECT_LT((p - q).norm(), kC0RelativeTolerance) << i << ", " << j;
+    }
+  // Across x = -0.5, away from the frame, no vertex is on the plane: the copy stands apart.
+  ASSERT_TRUE(s.undo());
+  applyJson(s, R"({"op":"mirror-frames","frames":[0],"axis":"x","at":-0.5})");
+  EXPECT_EQ(s.frames()->vertices.size(), 16u);
+  EXPECT_EQ(sharedEdges(*s.frames()), 0u);
+  EXPECT_TRUE(contains(refusal(s, R"({"op":"mirror-frames","frames":[0],"axis":"x","at":"1"})"),
+                       "expected a number"));
+}
+
 TEST(Structure, WeldEdgesClosesAStripIntoATube) {
   VertexFrameModel strip = newModel(NewModelOptions::Kind::Grid, 4, 1);
   ModelSession s{AnyModel(strip)};

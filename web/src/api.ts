@@ -85,7 +85,7 @@ export type Edit =
   | { op: 'add-frame'; corners: number[] }
   | { op: 'delete-frames'; frames: number[] }
   | { op: 'flip-frames'; frames: number[] }
-  | { op: 'mirror-frames'; frames: number[]; axis: 'x' | 'y' | 'z' }
+  | { op: 'mirror-frames'; frames: number[]; axis: 'x' | 'y' | 'z'; at?: number }
   | { op: 'split-frame'; frames: number[]; parts: 4 }
   | { op: 'split-frame'; frames: number[]; parts: 2; across: 'u' | 'v' }
   | { op: 'weld-vertices'; vertices: [number, number] }

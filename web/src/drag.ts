@@ -11,11 +11,35 @@ import type { Topic } from './store';
 import type { Studio } from './studio';
 import type { Viewport } from './viewport';
 import { coincidentWith, toggled, toggledInStack } from './structure';
-import { nearestOnSegments, nearestVertex, onSurface, outlineSegments, surfaceSnapshot, TYPED_CHARACTERS, typedOffset } from './snap';
+import { nearestOnSegments, nearestVertex, onAxisTo, onSurface, outlineSegments, snapped, surfaceSnapshot, TYPED_CHARACTERS, typedOffset } from './snap';
 import type { SnapMode } from './snap';
 import type * as THREE from 'three';
 import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
 import type { MirrorPlane } from './symmetry';
+import { GLOBAL_BASIS, isGlobal, selectionBasis } from './orientation';
+import type { Basis, Orientation } from './orientation';
+
+/** The panel's transform orientation (*axes*). */
+export const orientationChoice = () => ($<HTMLSelectElement>('orientation').value || 'global') as Orientation;
+
+/** The axes of the panel's orientation for the vertices `vertices` (the selection a tool acts
+ * on; the selected frames and the active vertex from the store). Global costs nothing; the
+ * others are computed where a tool starts (a drag's press, a gizmo shown), never per step. */
+export function studioBasis(studio: Studio, vertices: readonly number[]): Basis {
+  const s = studio.store.state;
+  const orientation = orientationChoice();
+  if (orientation === 'global' || !s.model) return GLOBAL_BASIS;
+  return selectionBasis(orientation, {
+    model: s.model,
+    vertices,
+    frames: [...s.selectedFrames],
+    active: s.selectedVertex,
+    mesh: s.mesh,
+  });
+}
+
+/** An axis' name in the status line: x, or local x / normal z. */
+export const axisName = (axis: number, basis: Basis) => `${isGlobal(basis) ? '' : `${orientationChoice()} `}${'xyz'[axis]}`;
 
 /** Puts each vertex of `moved` at its start `from[i]` offset by `d` in the store (one update,
  * announcing `topics`), and moves the frame view's handles of those but `skip` (a handle the
@@ -39,12 +63,6 @@ export function placeVertices(studio: Studio, moved: readonly number[], at: (i: 
     moved.forEach((v, i) => (s.model!.vertices[v] = at(i)));
   });
   for (const v of moved) if (v !== skip) frameView.moveVertex(v, store.state.model!.vertices[v]);
-}
-
-/** An offset with each coordinate rounded to a multiple of `step` (0: as it is). */
-export function snapped(d: readonly [number, number, number], step: number): [number, number, number] {
-  if (!(step > 0)) return [d[0], d[1], d[2]];
-  return [0, 1, 2].map((c) => Math.round(d[c] / step) * step) as [number, number, number];
 }
 
 /** Presses that move less than this many pixels are clicks. */
@@ -76,6 +94,9 @@ export function mountDragTool(studio: Studio): DragTool {
     from: Vec3[];
     /** The locked axis (X, Y, Z keys), or null: in the plane facing the camera. */
     axis: 0 | 1 | 2 | null;
+    /** The axes X, Y, Z lock to and the step rounds along (the panel's orientation, taken at
+     * the press). */
+    basis: Basis;
     /** Where the pointer was last. */
     at?: { x: number; y: number };
     /** The view the drag is in (its camera's plane). */
@@ -111,7 +132,7 @@ export function mountDragTool(studio: Studio): DragTool {
       const from = moved.map((v) => [...model.vertices[v]] as Vec3);
       const plane = symmetryPlane($<HTMLSelectElement>('symmetry').value, model.vertices);
       const mirror = plane && { plane, found: mirrorPartners(model.vertices, moved, from, plane) };
-      drag = { vertex, pointer: ev.pointerId, moved, from, axis: null, view, mirror, snap: snapTargets(new Set([...moved, ...(mirror?.found.partners ?? [])])), typed: '' };
+      drag = { vertex, pointer: ev.pointerId, moved, from, axis: null, basis: studioBasis(studio, moved), view, mirror, snap: snapTargets(new Set([...moved, ...(mirror?.found.partners ?? [])])), typed: '' };
       studio.beginGesture('drag');
       ev.preventDefault();
     },
@@ -209,25 +230,29 @@ export function mountDragTool(studio: Studio): DragTool {
   }
 
   /** Moves the dragged vertices for the pointer at (x, y): in the plane facing the camera, or
-   * along the locked axis (the point of the axis through the start nearest the pointer's
-   * ray). A typed distance sets the offset's length (along the axis, or the pointer's
-   * direction); else a snap target near the pointer (free drags) places the grabbed vertex
-   * on it; else the offset is rounded to the grid step when one is set. */
+   * along the locked axis of the drag's basis (the point of the axis through the start
+   * nearest the pointer's ray). A typed distance sets the offset's length (along the axis, or
+   * the pointer's direction); else a snap target near the pointer places the grabbed vertex
+   * on it (with an axis locked: where the target lies along the axis); else the offset is
+   * rounded to the grid step along the basis' axes when one is set. */
   function dragTo(x: number, y: number): void {
     if (!drag) return;
     const { vertex, moved, from } = drag;
     const start = from[moved.indexOf(vertex)];
-    const target = drag.axis === null ? drag.view.dragTarget(start, x, y) : drag.view.axisTarget(start, drag.axis, x, y);
+    const along = drag.axis === null ? null : drag.basis[drag.axis];
+    const target = along === null ? drag.view.dragTarget(start, x, y) : drag.view.axisTarget(start, along, x, y);
     if (!target) return;
     const free: [number, number, number] = [target[0] - start[0], target[1] - start[1], target[2] - start[2]];
     const typed = drag.typed ? evaluateExpression(drag.typed) : null;
-    const snap = typed === null && drag.axis === null ? snapPoint(x, y) : null;
+    const snap = typed === null ? snapPoint(x, y) : null;
     const d =
       typed !== null && Number.isFinite(typed)
-        ? typedOffset(typed, drag.axis, free)
+        ? typedOffset(typed, along, free)
         : snap
-          ? ([snap[0] - start[0], snap[1] - start[1], snap[2] - start[2]] as [number, number, number])
-          : snapped(free, snapStep());
+          ? along
+            ? onAxisTo(start, along, snap)
+            : ([snap[0] - start[0], snap[1] - start[1], snap[2] - start[2]] as Vec3)
+          : snapped(free, snapStep(), isGlobal(drag.basis) ? null : drag.basis);
     if (!d) return;
     const skip = store.state.selectedVertex;
     const mirror = drag.mirror;
@@ -269,7 +294,7 @@ export function mountDragTool(studio: Studio): DragTool {
       ev.stopImmediatePropagation();
       if (k >= 0) {
         drag.axis = drag.axis === k ? null : (k as 0 | 1 | 2);
-        studio.say(drag.axis === null ? 'drag: free' : `drag: along ${'xyz'[drag.axis]} only`);
+        studio.say(drag.axis === null ? 'drag: free' : `drag: along ${axisName(drag.axis, drag.basis)} only`);
       } else if (typing) {
         drag.typed = ev.key === 'Backspace' ? drag.typed.slice(0, -1) : drag.typed + ev.key;
         const value = evaluateExpression(drag.typed);

@@ -1,6 +1,7 @@
 // Forces placed on the surface: the regions of the selected frame's forces drawn on its patch
-// (the selected one with handles), the patches of the shared forces over the selected frames
-// (seed Fig. 9) outlined; with Draw force on (D), a drag on a patch makes a new force over the
+// (the selected one with handles, and its effect arrow), the patches of the shared forces over
+// the selected frames (seed Fig. 9) outlined (the one over exactly them with an effect arrow on
+// each patch); with Draw force on (D), a drag on a patch makes a new force over the
 // rectangle it spans in the patch's (u, v); a region's corner handles resize it and its
 // centre handle moves it. Each change is one set-forces edit (one undo step); the panel's
 // u0 u1 v0 v1 boxes show the same numbers. Points and parameters come from the server's
@@ -9,7 +10,7 @@ import * as THREE from 'three';
 import { api } from './api';
 import type { FrameForce, Region, Vec3 } from './api';
 import { $ } from './dom';
-import { forceDisplacement, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from './regions';
+import { forceDisplacement, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion, sharedDisplacements, sharedForceOf } from './regions';
 import type { UV } from './regions';
 import type { Studio } from './studio';
 import type { SurfacePicker } from './surface-pick';
@@ -39,6 +40,9 @@ export interface ForcesTool {
   /** The effect arrow of the selected force (world points: its tail and its tip, the region's
    * middle on the surface), or null while none is shown. */
   effect(): { from: Vec3; to: Vec3 } | null;
+  /** The effect arrows of the shared force over the selected frames, one on each of its
+   * frames' patches (tail, tip on the patch's middle), or none. */
+  sharedEffects(): { frame: number; from: Vec3; to: Vec3 }[];
   /** The outlines drawn: each one's frame and region (tests). */
   drawn(): { frame: number; region: Region }[];
   /** The client point of (u, v) on frame `frame`'s patch (tests). */
@@ -93,6 +97,19 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
   effect.renderOrder = 5;
   for (const part of [effect.line, effect.cone]) (part.material as THREE.Material).depthTest = false;
   surfaceView.scene.add(lines, handles, effect);
+  // The shared force's: one arrow per frame (made as needed, kept hidden when not).
+  const sharedArrows: THREE.ArrowHelper[] = [];
+  const sharedArrow = (i: number) => {
+    while (sharedArrows.length <= i) {
+      const a = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, EFFECT_COLOR);
+      a.renderOrder = 5;
+      for (const part of [a.line, a.cone]) (part.material as THREE.Material).depthTest = false;
+      surfaceView.scene.add(a);
+      sharedArrows.push(a);
+    }
+    return sharedArrows[i];
+  };
+  let sharedShown: number[] = []; // the frame of each shown shared arrow
 
   let drawing = false;
   const button = $<HTMLButtonElement>('draw-force');
@@ -151,6 +168,15 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
       uv.push(...regionOutline(o.region, OUTLINE_SAMPLES));
       return first;
     });
+    // The shared force the f0 sliders set (over exactly the selected frames): its patches'
+    // middles, where its arrows end.
+    const frames = [...store.state.selectedFrames].sort((a, b) => a - b);
+    const shared = frames.length > 1 && frames.length <= MAX_OUTLINED_FRAMES ? sharedForceOf(store.state.model, frames) : undefined;
+    const middles = (shared?.frames ?? []).map((f) => {
+      const uv = uvOf(f);
+      uv.push([0.5, 0.5]);
+      return uv.length - 1;
+    });
     let handleFirst = -1;
     if (selected) {
       const uv = uvOf(selected.frame);
@@ -185,23 +211,47 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
     handleOf = selected;
     handles.geometry.setAttribute('position', new THREE.Float32BufferAttribute(handlePoints.flatMap((q) => q.toArray()), 3));
     showEffect(selected);
+    showSharedEffects(shared ? sharedDisplacements(store.state.model!, shared).map((m, i) => ({ ...m, tip: points.get(m.frame)![middles[i]] })) : []);
     surfaceView.invalidate();
   }
   store.subscribe(['model', 'selection', 'forces', 'mesh'], () => void redraw());
+
+  /** Points `arrow` from `tip` − `d` to `tip`; hidden when `d` is 0 or not a number. */
+  function pointArrow(arrow: THREE.ArrowHelper, tip: THREE.Vector3, d: readonly number[]): void {
+    const along = new THREE.Vector3(...d);
+    const length = along.length();
+    arrow.visible = length > 0 && Number.isFinite(length);
+    if (!arrow.visible) return;
+    arrow.position.copy(tip).sub(along);
+    arrow.setDirection(along.normalize());
+    arrow.setLength(length, EFFECT_HEAD * length, EFFECT_HEAD * length * 0.6);
+  }
+
+  /** The shared force's arrows, each ending at its frame's patch middle on the surface. */
+  function showSharedEffects(moves: { frame: number; d: readonly number[]; tip: Vec3 }[]): void {
+    sharedArrows.forEach((a) => (a.visible = false));
+    sharedShown = [];
+    moves.forEach((m, i) => {
+      pointArrow(sharedArrow(i), new THREE.Vector3(...m.tip), m.d);
+      sharedShown.push(m.frame);
+    });
+  }
 
   /** The effect arrow of the selected force, ending at its region's middle on the surface. */
   function showEffect(selected: { frame: number; force: number } | null): void {
     const frame = selected && store.state.model?.frames[selected.frame];
     const force = frame?.forces?.[selected!.force];
     const d = force ? forceDisplacement(force.f0, frame!.a1 ?? [1, 1, 1], frame!.a2 ?? [1, 1, 1], force.region ?? [0, 1, 0, 1]) : null;
-    const along = d ? new THREE.Vector3(...d) : null;
-    const length = along?.length() ?? 0;
-    effect.visible = !!along && handlePoints.length === 5 && length > 0 && Number.isFinite(length);
-    if (!effect.visible) return;
-    effect.position.copy(handlePoints[4]).sub(along!);
-    effect.setDirection(along!.normalize());
-    effect.setLength(length, EFFECT_HEAD * length, EFFECT_HEAD * length * 0.6);
+    if (d && handlePoints.length === 5) pointArrow(effect, handlePoints[4], d);
+    else effect.visible = false;
   }
+
+  /** An arrow's tail and tip (world points). */
+  const ends = (arrow: THREE.ArrowHelper) => {
+    const from = arrow.position.toArray() as Vec3;
+    const tip = arrow.position.clone().addScaledVector(new THREE.Vector3(0, 1, 0).applyQuaternion(arrow.quaternion), arrow.cone.position.y);
+    return { from, to: tip.toArray() as Vec3 };
+  };
 
   /** The handle of the selected force under a client point, if any. */
   function handleAt(x: number, y: number): number | null {
@@ -320,12 +370,8 @@ export function mountForcesTool(studio: Studio, picker: SurfacePicker): ForcesTo
   return {
     toggleDraw,
     drawn: () => drawn,
-    effect: () => {
-      if (!effect.visible) return null;
-      const from = effect.position.toArray() as Vec3;
-      const tip = effect.position.clone().addScaledVector(new THREE.Vector3(0, 1, 0).applyQuaternion(effect.quaternion), effect.cone.position.y);
-      return { from, to: tip.toArray() as Vec3 };
-    },
+    effect: () => (effect.visible ? ends(effect) : null),
+    sharedEffects: () => sharedShown.flatMap((frame, i) => (sharedArrows[i].visible ? [{ frame, ...ends(sharedArrows[i]) }] : [])),
     handleScreen(h) {
       const p = handlePoints[h];
       if (!p) return null;

@@ -1,17 +1,24 @@
-// The move gizmo (G): three arrows (and three planes) on the centre of the vertex selection
-// in the frame view (of a spectral, cross-section or B-spline PDE model: on the chosen
-// curve's centre, curve-editor.ts); dragging one moves the selection (the curve) along that
-// axis (or in that plane), one undo step per drag, as a dragged handle does. three.js's TransformControls draws and
-// solves it; its pointer events are fed from here, ahead of the handles' drag tool and the
-// orbit controls (a press on the gizmo reaches neither).
+// The gizmo (G; Shift+G or the panel's *gizmo* picks its handles): three arrows (and three
+// planes) on the centre of the vertex selection in the frame view (of a spectral, cross-section
+// or B-spline PDE model: on the chosen curve's centre, curve-editor.ts); dragging one moves the
+// selection (the curve) along that axis (or in that plane); or three rings that turn it about
+// each axis, or three boxes that scale it along each axis, on the pivot (the panel's pivot:
+// each vertex turns and scales about its own, selection-transform.ts pivotsOf). The axes are
+// the panel's orientation (global, local, normal: orientation.ts). One undo step per drag, as a
+// dragged handle. three.js's TransformControls draws and solves it; its pointer events are fed
+// from here, ahead of the handles' drag tool and the orbit controls (a press on the gizmo
+// reaches neither).
 import * as THREE from 'three';
 import { TransformControls } from 'three/examples/jsm/controls/TransformControls.js';
 import type { Vec3 } from './api';
-import { placeVertices } from './drag';
+import { placeVertices, studioBasis } from './drag';
 import { $ } from './dom';
 import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
 import type { MirrorPlane } from './symmetry';
-import { boxCentre } from './selection-transform';
+import { boxCentre, pivotsOf, selectionPieces } from './selection-transform';
+import type { Pivot } from './selection-transform';
+import { GLOBAL_BASIS, isGlobal, scaledAlong, turnedBy } from './orientation';
+import type { Basis } from './orientation';
 import type { Studio } from './studio';
 
 /** The gizmo's size (TransformControls' unit: about 1/4 of the view's height per 1). */
@@ -30,10 +37,19 @@ export interface GizmoSubject {
  * when that subject's centre moved or another curve was chosen (set by the gizmo). */
 export const gizmoSubjects: { shape?: GizmoSubject; changed?: () => void } = {};
 
+/** What the gizmo's handles do: arrows and planes that move, rings that rotate (about each
+ * axis, and the outer ring about the view's direction), boxes that scale along each axis. */
+export type GizmoMode = 'translate' | 'rotate' | 'scale';
+export const GIZMO_MODES: GizmoMode[] = ['translate', 'rotate', 'scale'];
+
 export interface Gizmo {
   toggle(): void;
-  /** A client point on the arrow of `axis` (tests). */
-  arrowScreen(axis: 'x' | 'y' | 'z'): { x: number; y: number } | null;
+  /** Shows the gizmo with its next kind of handles: move, rotate, scale (Shift+G). */
+  cycle(): void;
+  /** A client point on the handle of `axis` (tests): on the arrow (move) or the box's stem
+   * (scale); on the ring (rotate) at `angle` radians from the next axis (x: from y, y: from z,
+   * z: from x) toward the one after. Null while the gizmo is hidden. */
+  handleScreen(axis: 'x' | 'y' | 'z', angle?: number): { x: number; y: number } | null;
 }
 
 /** The vertices a selection tool acts on: the selected vertices, else the selected frames'. */
@@ -46,6 +62,17 @@ export function selectionVertices(studio: Studio): number[] {
   return [...all].sort((a, b) => a - b);
 }
 
+/** The panel's pivot for scale and rotate. */
+export const pivotChoice = () => ($<HTMLSelectElement>('selection-pivot').value || 'centre') as Pivot;
+
+/** Each of the vertices' pivot (at `points`), as the panel's *pivot* says (selection-transform.ts
+ * pivotsOf: the pieces are those of the vertices, the active vertex the store's). */
+export function selectionPivots(studio: Studio, vertices: readonly number[], points: readonly Vec3[]): Vec3[] {
+  const model = studio.store.state.model!;
+  const active = studio.store.state.selectedVertex;
+  return pivotsOf(points, pivotChoice(), selectionPieces(vertices, model.frames), active === null ? null : model.vertices[active]);
+}
+
 export function mountGizmo(studio: Studio): Gizmo {
   const { store, frameView, pump } = studio;
   const proxy = new THREE.Object3D();
@@ -53,41 +80,69 @@ export function mountGizmo(studio: Studio): Gizmo {
   const controls = new TransformControls(frameView.camera);
   controls.size = GIZMO_SIZE;
   controls.attach(proxy);
-  // No free (screen-plane) move at the centre: that is a dragged handle's, and the centre
-  // may sit on one.
-  const picker = (controls as unknown as { _gizmo: { picker: { translate: THREE.Object3D } } })._gizmo.picker.translate;
-  for (const o of [...picker.children]) if (o.name === 'XYZ') picker.remove(o);
+  // Nothing to grab at the centre (a free move, the trackball, a uniform scale): that is a
+  // dragged handle's place, and the centre may sit on one.
+  const pickers = (controls as unknown as { _gizmo: { picker: Record<GizmoMode, THREE.Object3D> } })._gizmo.picker;
+  for (const [mode, name] of [
+    ['translate', 'XYZ'],
+    ['rotate', 'XYZE'],
+    ['scale', 'XYZ'],
+  ] as const)
+    for (const o of [...pickers[mode].children]) if (o.name === name) pickers[mode].remove(o);
   const helper = controls.getHelper();
   frameView.scene.add(helper);
   let on = false;
   const toggleBox = document.querySelector<HTMLInputElement>('[data-testid="gizmo"]');
+  const modeBox = document.querySelector<HTMLSelectElement>('[data-testid="gizmo-mode"]');
+  const mode = (): GizmoMode => (modeBox?.value as GizmoMode | undefined) ?? 'translate';
+  /** The gizmo's axes (the panel's orientation for the selection), taken when the selection,
+   * the model or the choice changes (never during a drag's steps). */
+  let basis: Basis = GLOBAL_BASIS;
 
-  /** A drag of the vertex selection: the vertices it moves, where they started, and with
-   * symmetry on the plane and the mirror partners found at the start. */
-  let drag: { moved: number[]; from: Vec3[]; mirror: { plane: MirrorPlane; found: ReturnType<typeof mirrorPartners> } | null } | null = null;
+  /** A drag of the vertex selection: the vertices it moves, where they started, each one's
+   * pivot, and with symmetry on the plane and the mirror partners found at the start. */
+  let drag: {
+    moved: number[];
+    from: Vec3[];
+    pivots: Vec3[];
+    mirror: { plane: MirrorPlane; found: ReturnType<typeof mirrorPartners> } | null;
+  } | null = null;
 
-  /** The vertex selection as the gizmo's subject. */
-  const vertexSubject: GizmoSubject = {
+  /** Puts the dragged vertices at `to` (their partners mirrored): the page and the server. */
+  const placeDragged = (to: Vec3[]) => {
+    if (!drag || !store.state.model) return;
+    const { moved, mirror } = drag;
+    const { vertices, positions } = mirror ? symmetricMove(mirror.plane, mirror.found, moved, to) : { vertices: moved, positions: to };
+    placeVertices(studio, vertices, (i) => positions[i], [], null);
+    pump.push(() => ({ op: 'move-vertices', vertices, positions }));
+  };
+
+  /** The vertex selection as the gizmo's subject: it moves, turns and scales. */
+  const vertexSubject: GizmoSubject & { transform(map: (p: Vec3, pivot: Vec3) => Vec3): void } = {
     centre: () => {
       const model = store.state.model;
       const vertices = model ? selectionVertices(studio) : [];
-      return vertices.length ? boxCentre(vertices.map((v) => model!.vertices[v])) : null;
+      if (!vertices.length) return null;
+      // The rings and boxes sit on the pivot (a single one), the arrows on the centre.
+      const active = store.state.selectedVertex;
+      if (mode() !== 'translate' && pivotChoice() === 'active' && active !== null) return [...model!.vertices[active]] as Vec3;
+      if (mode() !== 'translate' && pivotChoice() === 'origin') return [0, 0, 0];
+      return boxCentre(vertices.map((v) => model!.vertices[v]));
     },
     begin: () => {
       const model = store.state.model!;
       const moved = selectionVertices(studio);
       const from = moved.map((v) => [...model.vertices[v]] as Vec3);
+      const pivots = selectionPivots(studio, moved, from);
       const plane = symmetryPlane($<HTMLSelectElement>('symmetry').value, model.vertices);
-      drag = { moved, from, mirror: plane && { plane, found: mirrorPartners(model.vertices, moved, from, plane) } };
+      drag = { moved, from, pivots, mirror: plane && { plane, found: mirrorPartners(model.vertices, moved, from, plane) } };
       studio.beginGesture('gizmo');
     },
     move: (d) => {
-      if (!drag || !store.state.model) return;
-      const { moved, from, mirror } = drag;
-      const to = from.map((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]] as Vec3);
-      const { vertices, positions } = mirror ? symmetricMove(mirror.plane, mirror.found, moved, to) : { vertices: moved, positions: to };
-      placeVertices(studio, vertices, (i) => positions[i], [], null);
-      pump.push(() => ({ op: 'move-vertices', vertices, positions }));
+      if (drag) placeDragged(drag.from.map((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]] as Vec3));
+    },
+    transform: (map) => {
+      if (drag) placeDragged(drag.from.map((p, i) => map(p, drag!.pivots[i])));
     },
     end: async () => {
       drag = null;
@@ -95,22 +150,40 @@ export function mountGizmo(studio: Studio): Gizmo {
       store.update(['model'], () => {});
     },
   };
-  const subject = (): GizmoSubject | null => (store.state.model ? vertexSubject : store.state.shape ? (gizmoSubjects.shape ?? null) : null);
-  /** Where the drag in progress started (null: none). */
+  // Curves (gizmoSubjects.shape) only move: the rings and boxes are the vertex selection's.
+  const subject = (): GizmoSubject | null =>
+    store.state.model ? vertexSubject : store.state.shape && mode() === 'translate' ? (gizmoSubjects.shape ?? null) : null;
+  /** Where the drag in progress started (null: none), and the proxy's turn then. */
   let dragStart: THREE.Vector3 | null = null;
+  let turnStart = new THREE.Quaternion();
 
-  const place = () => {
+  /** Takes the axes of the panel's orientation for the selection (vertex models only). */
+  const orient = () => {
+    basis = store.state.model && on ? studioBasis(studio, selectionVertices(studio)) : GLOBAL_BASIS;
+    controls.setSpace(isGlobal(basis) ? 'world' : 'local');
+    // The handles along the axes, unturned and unscaled (after a drag of the rings or boxes).
+    proxy.quaternion.setFromRotationMatrix(new THREE.Matrix4().makeBasis(...(basis.map((a) => new THREE.Vector3(...a)) as [THREE.Vector3, THREE.Vector3, THREE.Vector3])));
+    proxy.scale.set(1, 1, 1);
+  };
+  const place = (_state?: unknown, topics?: ReadonlySet<string>) => {
+    if (dragStart) return; // the drag moves the proxy itself
+    if (!topics || topics.has('model') || topics.has('selection')) orient();
     const centre = subject()?.centre() ?? null;
     const wasVisible = helper.visible;
     helper.visible = on && centre !== null;
     controls.enabled = helper.visible;
-    if (centre && !dragStart) proxy.position.set(...centre);
+    if (centre) proxy.position.set(...centre);
     // Only a shown gizmo (or one shown or hidden now) needs the frame view drawn whole: a
     // hidden one must not turn a vertex drag's region redraw (frame-view.ts) into whole draws.
     if (helper.visible || wasVisible) frameView.invalidate();
   };
   store.subscribe(['model', 'selection', 'vertex'], place);
-  gizmoSubjects.changed = place;
+  gizmoSubjects.changed = () => place();
+  const setMode = (m: GizmoMode) => {
+    if (modeBox) modeBox.value = m;
+    controls.setMode(m);
+    place();
+  };
   const toggle = () => {
     on = !on;
     if (toggleBox) toggleBox.checked = on;
@@ -119,6 +192,8 @@ export function mountGizmo(studio: Studio): Gizmo {
   toggleBox?.addEventListener('change', () => {
     if (toggleBox.checked !== on) toggle();
   });
+  modeBox?.addEventListener('change', () => setMode(mode()));
+  for (const id of ['orientation', 'selection-pivot']) document.querySelector(`[data-testid="${id}"]`)?.addEventListener('change', () => place());
 
   controls.addEventListener('change', () => frameView.invalidate());
   // The subject of a drag is kept from its press to its release.
@@ -127,18 +202,30 @@ export function mountGizmo(studio: Studio): Gizmo {
     dragging = subject();
     if (!dragging) return;
     dragStart = proxy.position.clone();
+    turnStart = proxy.quaternion.clone();
     dragging.begin();
   });
   controls.addEventListener('objectChange', () => {
     if (!dragging || !dragStart) return;
-    const d = proxy.position.clone().sub(dragStart);
-    dragging.move([d.x, d.y, d.z]);
+    const kind = mode();
+    if (kind === 'translate') {
+      const d = proxy.position.clone().sub(dragStart);
+      dragging.move([d.x, d.y, d.z]);
+    } else if (dragging === vertexSubject && kind === 'rotate') {
+      // The turn since the press, in world axes, about each vertex's pivot.
+      const q = proxy.quaternion.clone().multiply(turnStart.clone().invert());
+      vertexSubject.transform((p, pivot) => turnedBy(p, pivot, [q.x, q.y, q.z, q.w]));
+    } else if (dragging === vertexSubject) {
+      // Scale along the gizmo's axes (TransformControls scales in the proxy's own).
+      const f: Vec3 = [proxy.scale.x, proxy.scale.y, proxy.scale.z];
+      vertexSubject.transform((p, pivot) => scaledAlong(p, pivot, basis, f));
+    }
   });
   controls.addEventListener('mouseUp', () => {
     const was = dragging;
     dragging = null;
     dragStart = null;
-    if (was) void was.end().then(place);
+    if (was) void was.end().then(() => place());
   });
 
   // The pointer, fed to the controls in the capture phase of the view's container (before
@@ -192,15 +279,26 @@ export function mountGizmo(studio: Studio): Gizmo {
 
   return {
     toggle,
-    arrowScreen(axis) {
+    cycle() {
+      const next = on ? GIZMO_MODES[(GIZMO_MODES.indexOf(mode()) + 1) % GIZMO_MODES.length] : mode();
+      if (!on) toggle();
+      setMode(next);
+      studio.say(`gizmo: ${next === 'translate' ? 'move' : next}`);
+    },
+    handleScreen(axis, angle = 0) {
       if (!helper.visible) return null;
       // TransformControls scales its handles so: distance × min(1.9 tan(fov/2) / zoom, 7) × size / 4.
       const camera = frameView.camera;
-      const factor =
-        proxy.position.distanceTo(camera.position) * Math.min((1.9 * Math.tan((Math.PI * camera.fov) / 360)) / camera.zoom, 7);
-      const along = new THREE.Vector3(axis === 'x' ? 1 : 0, axis === 'y' ? 1 : 0, axis === 'z' ? 1 : 0);
-      // The arrow's picker runs from 0 to 0.6 along its axis: press at 0.45.
-      const s = frameView.toClient(proxy.position.clone().addScaledVector(along, (0.45 * factor * controls.size) / 4));
+      const unit = (proxy.position.distanceTo(camera.position) * Math.min((1.9 * Math.tan((Math.PI * camera.fov) / 360)) / camera.zoom, 7) * controls.size) / 4;
+      const k = 'xyz'.indexOf(axis);
+      const along = (i: number) => new THREE.Vector3(...basis[i % 3]);
+      // An arrow's (a box's) picker runs from 0 to 0.6 along its axis: press at 0.45; a ring
+      // has radius 0.5.
+      const at =
+        mode() === 'rotate'
+          ? along(k + 1).multiplyScalar(Math.cos(angle)).addScaledVector(along(k + 2), Math.sin(angle)).multiplyScalar(0.5 * unit)
+          : along(k).multiplyScalar(0.45 * unit);
+      const s = frameView.toClient(proxy.position.clone().add(at));
       return { x: s.x, y: s.y };
     },
   };

@@ -10,16 +10,17 @@ import type { Vec3 } from './api';
 import { $, readNumber } from './dom';
 import { mountForcesTool } from './forces-tool';
 import type { ForcesTool } from './forces-tool';
-import { mountGizmo, selectionVertices } from './gizmo';
+import { mountGizmo, selectionPivots, selectionVertices } from './gizmo';
 import type { Gizmo } from './gizmo';
 import { modelBox } from './viewport';
-import { pivotsOf, rotatedAbout, scaledAbout, selectionPieces } from './selection-transform';
-import type { Pivot } from './selection-transform';
+import { scaledAbout } from './selection-transform';
+import { fromBasis, isGlobal, rotatedAboutAxis } from './orientation';
 import type { Studio } from './studio';
 import { addFrameEdit, coincidentWith, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, selectStrip, splitEdit, toggled, toggledInStack, weldEdit } from './structure';
 import type { Made } from './structure';
 import { SurfacePicker } from './surface-pick';
 import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
+import { studioBasis } from './drag';
 import type { DragTool } from './drag';
 
 /** The modeller's tools, for the browser tests (test-hooks.ts). */
@@ -42,6 +43,8 @@ export interface ModellerActions {
   /** Copies the selected frames across the panel's symmetry plane. */
   mirror(): void;
   toggleGizmo(): void;
+  /** Shows the gizmo with its next kind of handles (move, rotate, scale). */
+  cycleGizmo(): void;
   scaleSelection(): void;
   rotateSelection(): void;
   toggleDrawForce(): void;
@@ -81,9 +84,10 @@ export function mountModeller(
     split: (parts) => send(() => splitEdit(store.state.selectedFrames, parts)),
     weld: () => send(() => weldEdit(store.state.model!, store.state.selectedVertices)),
     flip: () => send(() => framesEdit('flip-frames', store.state.selectedFrames)),
-    mirror: () => send(() => mirrorEdit(store.state.selectedFrames, $<HTMLSelectElement>('symmetry').value)),
+    mirror: () => send(() => mirrorEdit(store.state.selectedFrames, symmetryPlane($<HTMLSelectElement>('symmetry').value, store.state.model!.vertices))),
     // Set below, with the tools they drive.
     toggleGizmo: () => {},
+    cycleGizmo: () => {},
     scaleSelection: () => {},
     rotateSelection: () => {},
     toggleDrawForce: () => {},
@@ -171,21 +175,19 @@ export function mountModeller(
   const numberIn = (id: string, rule: Parameters<typeof readNumber>[1] = {}) =>
     readNumber($<HTMLInputElement>(id), rule, (m) => studio.showError(m));
 
-  // The selection moved by a typed offset, scaled or turned about its centre.
+  // The selection moved by a typed offset, scaled or turned about its pivot; the offset and
+  // the turn's axis along the panel's orientation (global: x, y, z as they are).
   $('offset-apply').addEventListener('click', () =>
     moveSelection('Move', (points) => {
       const d = ['x', 'y', 'z'].map((axis) => numberIn(`offset-${axis}`, { label: `d${axis}` }));
       if (d.some((x) => x === null)) return null;
-      return points.map((p) => p.map((x, i) => x + d[i]!) as Vec3);
+      const basis = studioBasis(studio, selectionVertices(studio));
+      const by = isGlobal(basis) ? (d as Vec3) : fromBasis(d as Vec3, basis);
+      return points.map((p) => p.map((x, i) => x + by[i]) as Vec3);
     }),
   );
   /** Each selected vertex's pivot, as the panel's *pivot* says (selection-transform.ts). */
-  const pivots = (points: Vec3[]) => {
-    const model = store.state.model!;
-    const active = store.state.selectedVertex;
-    const pieces = selectionPieces(selectionVertices(studio), model.frames);
-    return pivotsOf(points, $<HTMLSelectElement>('selection-pivot').value as Pivot, pieces, active === null ? null : model.vertices[active]);
-  };
+  const pivots = (points: Vec3[]) => selectionPivots(studio, selectionVertices(studio), points);
   actions.scaleSelection = () =>
     moveSelection('Scale', (points) => {
       const factor = numberIn('selection-scale', { label: 'scale factor', min: 0, nonZero: true });
@@ -194,8 +196,8 @@ export function mountModeller(
   actions.rotateSelection = () =>
     moveSelection('Rotate', (points) => {
       const degrees = numberIn('selection-degrees', { label: 'degrees' });
-      const axis = $<HTMLSelectElement>('selection-axis').value as 'x' | 'y' | 'z';
-      return degrees === null ? null : pivots(points).map((c, i) => rotatedAbout([points[i]], c, axis, degrees)[0]);
+      const axis = studioBasis(studio, selectionVertices(studio))['xyz'.indexOf($<HTMLSelectElement>('selection-axis').value)];
+      return degrees === null ? null : pivots(points).map((c, i) => rotatedAboutAxis([points[i]], c, axis, degrees)[0]);
     });
   $('selection-scale-apply').addEventListener('click', actions.scaleSelection);
   $('selection-rotate-apply').addEventListener('click', actions.rotateSelection);
@@ -346,6 +348,7 @@ export function mountModeller(
   const gizmo = mountGizmo(studio);
   const forces = mountForcesTool(studio, picker);
   actions.toggleGizmo = gizmo.toggle;
+  actions.cycleGizmo = gizmo.cycle;
   actions.toggleDrawForce = forces.toggleDraw;
   modellerTools.gizmo = gizmo;
   modellerTools.forces = forces;

@@ -1,8 +1,8 @@
 // The side panel of a vertex-frame model: the selected vertex's coordinates, the a1 / a2
 // sliders of the selected frames, and their forces (regions, f0 sliders).
-import type { Edit, FrameForce, Model, Region, SharedForce, Vec3 } from './api';
+import type { Edit, FrameForce, Region, Vec3 } from './api';
 import { $, numberBox, readNumber } from './dom';
-import { forceDisplacement, forceEffectText } from './regions';
+import { forceDisplacement, forceEffectText, sharedEffectText, sharedForceOf } from './regions';
 import type { State } from './store';
 import type { Studio } from './studio';
 
@@ -120,10 +120,6 @@ function sub(parent: HTMLElement, text: string): void {
 
 const selectedFrameList = (state: Readonly<State>) => [...state.selectedFrames].sort((a, b) => a - b);
 
-function sharedForceOf(model: Model | null, frames: number[]): SharedForce | undefined {
-  const key = frames.join(',');
-  return model?.forces?.find((f) => [...f.frames].sort((a, b) => a - b).join(',') === key);
-}
 
 export function mountPanel(studio: Studio): void {
   const { store, pump } = studio;
@@ -328,15 +324,19 @@ export function mountPanel(studio: Studio): void {
   }
 
   /** The selected force's effect in words, live as its sliders move (its arrow on the
-   * surface: forces-tool.ts); empty unless one frame's force is selected. */
+   * surface: forces-tool.ts): one frame's selected force, or the shared force over the selected
+   * frames; else empty. */
   function renderForceEffect(): void {
     const state = store.state;
     const frames = selectedFrameList(state);
     const frame = frames.length === 1 ? state.model?.frames[frames[0]] : undefined;
     const force = frame?.forces?.[Math.min(state.selectedForce, frame.forces.length - 1)];
+    const shared = frames.length > 1 && state.model ? sharedForceOf(state.model, frames) : undefined;
     $('force-effect').textContent = force
       ? forceEffectText(forceDisplacement(force.f0, frame!.a1 ?? [1, 1, 1], frame!.a2 ?? [1, 1, 1], force.region ?? [0, 1, 0, 1]))
-      : '';
+      : shared
+        ? sharedEffectText(state.model!, shared)
+        : '';
   }
 
   $('add-force').addEventListener('click', () => {

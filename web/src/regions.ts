@@ -1,7 +1,7 @@
 // Force regions [u0, u1, v0, v1] placed and changed by hand on a patch (no DOM: web/test runs
 // it in Node): a rectangle from two picked parameter points, a corner dragged, the whole
 // region moved; always inside [0, 1]² and never thinner than MIN_REGION.
-import type { Region } from './api';
+import type { Model, Region, SharedForce } from './api';
 
 /** The narrowest region side a drag makes (the server refuses an empty one). */
 export const MIN_REGION = 0.02;
@@ -93,4 +93,31 @@ export function forceEffectText(d: readonly number[]): string {
   const fmt = (x: number) => (Math.abs(x) < 1e-12 ? '0' : x.toPrecision(3).replace(/\.?0+$/, '').replace(/\.?0+e/, 'e'));
   const main = [0, 1, 2].reduce((a, c) => (Math.abs(d[c]) > Math.abs(d[a]) ? c : a), 0);
   return `its middle moves by (${d.map(fmt).join(', ')}), ${fmt(length)} long, mostly toward ${d[main] < 0 ? '−' : '+'}${'xyz'[main]}`;
+}
+
+/** The shared force over exactly the frames `frames` (sorted), if the model has one: the one
+ * the panel's f0 sliders set while those frames are selected. */
+export function sharedForceOf(model: Model | null, frames: readonly number[]): SharedForce | undefined {
+  const key = frames.join(',');
+  return model?.forces?.find((f) => [...f.frames].sort((a, b) => a - b).join(',') === key);
+}
+
+/** How far a shared force moves the middle of each of its frames' patches: it acts on each
+ * frame whole (region [0, 1]², with that frame's a1 and a2), as a frame force there. */
+export function sharedDisplacements(model: Model, force: SharedForce): { frame: number; d: [number, number, number] }[] {
+  return force.frames.map((k) => {
+    const frame = model.frames[k];
+    return { frame: k, d: forceDisplacement(force.f0, frame.a1 ?? [1, 1, 1], frame.a2 ?? [1, 1, 1], [0, 1, 0, 1]) };
+  });
+}
+
+/** A shared force's effect in words: the move of each frame's middle when all its frames
+ * take the same, else that of the frame it moves most. */
+export function sharedEffectText(model: Model, force: SharedForce): string {
+  const moves = sharedDisplacements(model, force);
+  const length = (d: readonly number[]) => Math.hypot(d[0], d[1], d[2]);
+  const most = moves.reduce((a, b) => (length(b.d) > length(a.d) ? b : a), moves[0]);
+  const same = moves.every((m) => m.d.every((x, c) => x === most.d[c]));
+  const text = forceEffectText(most.d);
+  return same ? `on each of its ${moves.length} frames ${text}` : `most on frame ${most.frame}: ${text}`;
 }

@@ -1,9 +1,12 @@
 // Snapping a handle drag (drag.ts) onto what is already there: the vertex nearest the pointer
 // on screen, the nearest point of a frame's outline, or the surface under the pointer; and the
-// distance typed during a drag (as Blender: type a number while dragging, Enter applies). No
-// DOM: web/test runs it in Node.
+// distance typed during a drag (as Blender: type a number while dragging, Enter applies); with
+// an axis locked, a target lines the vertex up with it along the axis. No DOM: web/test runs it
+// in Node.
 import * as THREE from 'three';
 import type { Vec3 } from './api';
+import { fromBasis, toBasis } from './orientation';
+import type { Basis } from './orientation';
 
 /** What a drag snaps to (the panel's *snap drags to*). */
 export type SnapMode = 'off' | 'vertices' | 'edges' | 'surface';
@@ -101,16 +104,28 @@ export function onSurface(surface: THREE.Mesh, view: Projector, x: number, y: nu
 /** The characters a distance typed during a drag is made of (an expression: `1/8`, `-0.5`). */
 export const TYPED_CHARACTERS = /^[0-9.+\-*/()]$/;
 
-/** The offset a typed distance gives: along the locked axis (its sign the direction), else
- * along the drag's own direction `direction` (its length the distance); null while the drag
- * has no direction yet. */
-export function typedOffset(distance: number, axis: 0 | 1 | 2 | null, direction: readonly number[]): Vec3 | null {
-  if (axis !== null) {
-    const d: Vec3 = [0, 0, 0];
-    d[axis] = distance;
-    return d;
-  }
+/** The offset a typed distance gives: along the locked axis `axis` (a unit vector; the
+ * distance's sign the direction), else along the drag's own direction `direction` (its length
+ * the distance); null while the drag has no direction yet. */
+export function typedOffset(distance: number, axis: Vec3 | null, direction: readonly number[]): Vec3 | null {
+  if (axis !== null) return axis.map((a) => (a === 0 ? 0 : a * distance)) as Vec3;
   const length = Math.hypot(direction[0], direction[1], direction[2]);
   if (!(length > 0)) return null;
   return [0, 1, 2].map((c) => (direction[c] / length) * distance) as Vec3;
+}
+
+/** An offset with each component along the basis' axes (global when none) rounded to a
+ * multiple of `step` (0: as it is). */
+export function snapped(d: readonly number[], step: number, basis: Basis | null = null): Vec3 {
+  if (!(step > 0)) return [d[0], d[1], d[2]];
+  const round = (c: readonly number[]) => [0, 1, 2].map((i) => Math.round(c[i] / step) * step);
+  return basis ? fromBasis(round(toBasis(d, basis)), basis) : (round(d) as Vec3);
+}
+
+/** The offset that takes `start` along the locked axis `axis` (a unit vector) to where a
+ * snap target `target` lies along it (its projection on the axis through `start`: as
+ * Blender's snapping with a constraint, the vertex lines up with the target). */
+export function onAxisTo(start: readonly number[], axis: Vec3, target: readonly number[]): Vec3 {
+  const t = (target[0] - start[0]) * axis[0] + (target[1] - start[1]) * axis[1] + (target[2] - start[2]) * axis[2];
+  return axis.map((a) => (a === 0 ? 0 : a * t)) as Vec3;
 }

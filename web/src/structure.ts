@@ -2,6 +2,7 @@
 // Node). Sides are numbered as the server and GET /api/boundaries number them: 0 v = 0,
 // 1 u = 1, 2 v = 1, 3 u = 0 (include/pdesurf/session.hpp).
 import type { Edit, Model } from './api';
+import type { MirrorPlane } from './symmetry';
 
 /** A side of a frame. */
 export interface FrameSide {
@@ -77,12 +78,14 @@ export function framesEdit(op: 'delete-frames' | 'flip-frames', frames: Readonly
   return { edit: { op, frames: [...frames].sort((a, b) => a - b) } };
 }
 
-/** Copies the selected frames across the plane `axis` = 0 (the panel's symmetry plane). */
-export function mirrorEdit(selected: ReadonlySet<number>, axis: string): Made {
-  if (axis.startsWith('c')) return { problem: `Mirror: copies across x = 0, y = 0 or z = 0 only; the plane through the model's centre is for symmetric edits` };
-  if (axis !== 'x' && axis !== 'y' && axis !== 'z') return { problem: 'Mirror: choose the symmetry plane in the panel first' };
+/** Copies the selected frames across the panel's symmetry plane (x, y or z = 0, or through the
+ * model's centre: symmetryPlane in symmetry.ts; null when off), welded at the seam. */
+export function mirrorEdit(selected: ReadonlySet<number>, plane: MirrorPlane | null): Made {
+  if (!plane) return { problem: 'Mirror: choose the symmetry plane in the panel first' };
   if (!selected.size) return { problem: 'Mirror: select frames first' };
-  return { edit: { op: 'mirror-frames', frames: [...selected].sort((a, b) => a - b), axis } };
+  const axis = (['x', 'y', 'z'] as const)[plane.axis];
+  const frames = [...selected].sort((a, b) => a - b);
+  return { edit: plane.at === 0 ? { op: 'mirror-frames', frames, axis } : { op: 'mirror-frames', frames, axis, at: plane.at } };
 }
 
 /** Splits the selected frames (all of them at once: one undo step); each cut runs on through

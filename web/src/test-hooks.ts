@@ -129,11 +129,16 @@ export function installTestHooks(studio: Studio): void {
     /** The selection: vertices in pick order, frames. */
     selection: () => ({ vertices: [...store.state.selectedVertices], frames: [...store.state.selectedFrames].sort((a, b) => a - b) }),
     /** The client point of the move gizmo's arrow along `axis` (null while it is hidden). */
-    gizmoArrow: (axis: 'x' | 'y' | 'z') => modellerTools.gizmo?.arrowScreen(axis) ?? null,
+    gizmoArrow: (axis: 'x' | 'y' | 'z') => modellerTools.gizmo?.handleScreen(axis) ?? null,
+    /** The client point of the gizmo's handle of `axis`: arrow, scale box's stem, or a point
+     * of the ring `angle` radians round (gizmo.ts handleScreen). */
+    gizmoHandle: (axis: 'x' | 'y' | 'z', angle?: number) => modellerTools.gizmo?.handleScreen(axis, angle) ?? null,
     /** The client point of a handle of the selected force region (0..3 corners, 4 centre). */
     forceHandle: (h: number) => modellerTools.forces?.handleScreen(h) ?? null,
     /** The selected force's effect arrow: tail and tip in world coordinates, or null. */
     forceEffect: () => modellerTools.forces?.effect() ?? null,
+    /** The shared force's effect arrows (over the selected frames): frame, tail, tip. */
+    sharedForceEffects: () => modellerTools.forces?.sharedEffects() ?? [],
     /** The force outlines drawn on the surface: frame and region of each. */
     forceOutlines: () => modellerTools.forces?.drawn() ?? [],
     /** The client point of (u, v) on frame `f`'s patch. */

@@ -270,11 +270,11 @@ export class Viewport {
     return performance.now() - t0;
   }
 
-  /** The point of the line through `vertex` along axis `axis` (0 x, 1 y, 2 z) nearest the
-   * ray through a client point: a drag locked to that axis. */
-  axisTarget(vertex: Vec3, axis: 0 | 1 | 2, x: number, y: number): Vec3 {
+  /** The point of the line through `vertex` along the unit vector `axis` (a global or a local
+   * axis, orientation.ts) nearest the ray through a client point: a drag locked to it. */
+  axisTarget(vertex: Vec3, axis: Vec3, x: number, y: number): Vec3 {
     const start = new THREE.Vector3(...vertex);
-    const along = new THREE.Vector3().setComponent(axis, 1);
+    const along = new THREE.Vector3(...axis);
     const reach = 1e6 * (1 + start.length());
     const onAxis = new THREE.Vector3();
     this.ray(x, y).distanceSqToSegment(

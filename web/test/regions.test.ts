@@ -1,6 +1,6 @@
 // Force regions drawn and changed by hand on a patch: always inside [0, 1]², never empty.
 import { describe, expect, it } from 'vitest';
-import { forceDisplacement, forceEffectText, MIN_REGION, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion } from '../src/regions';
+import { forceDisplacement, forceEffectText, MIN_REGION, moveRegion, regionCorners, regionFromCorners, regionOutline, resizeRegion, sharedDisplacements, sharedEffectText, sharedForceOf } from '../src/regions';
 
 describe('force regions from picked points', () => {
   it('spans the two picked points in either order', () => {
@@ -51,5 +51,24 @@ describe('forceDisplacement', () => {
     expect(forceEffectText([0, 0, -0.025])).toBe('its middle moves by (0, 0, -0.025), 0.025 long, mostly toward −z');
     expect(forceEffectText([0, 0, 0])).toBe('f0 is 0: the region does not move');
     expect(forceEffectText([NaN, 0, 0])).toContain('no solution');
+  });
+});
+
+describe('shared forces', () => {
+  const frame = (a1: [number, number, number]) => ({ vertices: [0, 1, 2, 3, 4, 5, 6, 7], a1 });
+  const model = { type: 'vertex-frames', vertices: [], frames: [frame([1, 1, 1]), frame([1, 1, 1]), frame([3, 3, 3])] } as unknown as import('../src/api').Model;
+  it("act on each frame whole: the formula with that frame's own a1 and a2 over [0, 1]²", () => {
+    const force = { f0: [0, 0, 4] as [number, number, number], frames: [2, 0] };
+    expect(sharedForceOf(model, [0, 2])).toBeUndefined();
+    const withForce = { ...model, forces: [force] };
+    expect(sharedForceOf(withForce, [0, 2])).toBe(force);
+    const moves = sharedDisplacements(withForce, force);
+    expect(moves.map((m) => m.frame)).toEqual([2, 0]);
+    // a1 = a2 = 1, Lu = Lv = 1: −4 / (2π²); with a1 = 3: −4 / (4π²).
+    expect(moves[1].d[2]).toBeCloseTo(-4 / (2 * Math.PI ** 2), 12);
+    expect(moves[0].d[2]).toBeCloseTo(-4 / (4 * Math.PI ** 2), 12);
+    expect(sharedEffectText(withForce, force)).toMatch(/^most on frame 0: its middle moves by \(0, 0, -0\.203\)/);
+    const even = { f0: [0, 0, 4] as [number, number, number], frames: [0, 1] };
+    expect(sharedEffectText({ ...model, forces: [even] }, even)).toMatch(/^on each of its 2 frames its middle moves by/);
   });
 });

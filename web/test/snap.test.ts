@@ -3,7 +3,8 @@
 import * as THREE from 'three';
 import { describe, expect, it } from 'vitest';
 import type { Vec3 } from '../src/api';
-import { nearestOnSegments, nearestVertex, onSurface, outlineSegments, surfaceSnapshot, typedOffset } from '../src/snap';
+import { nearestOnSegments, nearestVertex, onAxisTo, onSurface, outlineSegments, snapped, surfaceSnapshot, typedOffset } from '../src/snap';
+import type { Basis } from '../src/orientation';
 import type { Projector } from '../src/snap';
 
 /** A view from above, 100 pixels a unit: (x, y) at client (100 x, -100 y), rays straight down. */
@@ -62,9 +63,35 @@ describe('onSurface', () => {
 
 describe('typedOffset', () => {
   it('is the distance along the locked axis, else along the drag with that length', () => {
-    expect(typedOffset(-0.25, 1, [5, 5, 5])).toEqual([0, -0.25, 0]);
+    expect(typedOffset(-0.25, [0, 1, 0], [5, 5, 5])).toEqual([0, -0.25, 0]);
+    // A local axis: the distance along it.
+    const local = typedOffset(2, [0.6, 0.8, 0], [1, 0, 0])!;
+    [1.2, 1.6, 0].forEach((x, c) => expect(Math.abs(local[c] - x)).toBeLessThan(ROUNDING));
     const d = typedOffset(10, null, [3, 4, 0])!;
     [6, 8, 0].forEach((x, c) => expect(Math.abs(d[c] - x)).toBeLessThan(ROUNDING));
     expect(typedOffset(1, null, [0, 0, 0])).toBeNull();
+  });
+});
+
+describe('snapped and onAxisTo', () => {
+  it('rounds the offset along the global axes, or along a basis, to the step', () => {
+    expect(snapped([0.26, -0.13, 0.0001], 0.25)).toEqual([0.25, -0.25, 0]);
+    expect(snapped([0.26, -0.13, 0.0001], 0)).toEqual([0.26, -0.13, 0.0001]);
+    // The basis turned 45° about z: an offset of 0.3 along its x' rounds to 0.25 along x'.
+    const r = Math.SQRT1_2;
+    const turned: Basis = [
+      [r, r, 0],
+      [-r, r, 0],
+      [0, 0, 1],
+    ];
+    const d = snapped([0.3 * r + 0.01 * r, 0.3 * r - 0.01 * r, 0], 0.25, turned);
+    [0.25 * r, 0.25 * r, 0].forEach((x, c) => expect(Math.abs(d[c] - x)).toBeLessThan(ROUNDING));
+  });
+  it('lines the vertex up with a snap target along the locked axis', () => {
+    // Locked to x from (1, 2, 3): a target at (4, 7, -1) puts it at x = 4, y and z kept.
+    expect(onAxisTo([1, 2, 3], [1, 0, 0], [4, 7, -1])).toEqual([3, 0, 0]);
+    // Along a local axis: the target's projection on it.
+    const d = onAxisTo([0, 0, 0], [0.6, 0.8, 0], [1, 2, 5]);
+    [0.6 * 2.2, 0.8 * 2.2, 0].forEach((x, c) => expect(Math.abs(d[c] - x)).toBeLessThan(ROUNDING));
   });
 });

@@ -2,7 +2,7 @@
 // selection names, and what each tool asks for when the selection does not fit.
 import { describe, expect, it } from 'vitest';
 import type { Model } from '../src/api';
-import { addFrameEdit, boundarySides, extrudeEdit, framesEdit, selectAll, selectInverse, selectLinked, selectStrip, selectedBoundarySides, splitEdit, toggled, toggledInStack, weldEdit } from '../src/structure';
+import { addFrameEdit, boundarySides, extrudeEdit, framesEdit, mirrorEdit, selectAll, selectInverse, selectLinked, selectStrip, selectedBoundarySides, splitEdit, toggled, toggledInStack, weldEdit } from '../src/structure';
 
 /** Two frames side by side on a 5 × 3 lattice (vertex j * 5 + i), sharing the column i = 2. */
 function twoFrames(): Model {
@@ -134,5 +134,14 @@ describe('loop and ring select', () => {
     // A flat row of two frames: the strip ends at the sides no other frame shares.
     expect(sorted(selectStrip(twoFrames(), { vertices: [], frames: new Set([0]) }, 'u'))).toEqual([0, 1]);
     expect(sorted(selectStrip(twoFrames(), { vertices: [], frames: new Set([0]) }, 'v'))).toEqual([0]);
+  });
+});
+
+describe('mirrorEdit', () => {
+  it('copies across the chosen plane: at 0 as before, through the centre with its offset', () => {
+    expect(mirrorEdit(new Set([1, 0]), { axis: 0, at: 0 })).toEqual({ edit: { op: 'mirror-frames', frames: [0, 1], axis: 'x' } });
+    expect(mirrorEdit(new Set([0]), { axis: 2, at: 1.5 })).toEqual({ edit: { op: 'mirror-frames', frames: [0], axis: 'z', at: 1.5 } });
+    expect('problem' in mirrorEdit(new Set([0]), null)).toBe(true);
+    expect('problem' in mirrorEdit(new Set(), { axis: 0, at: 0 })).toBe(true);
   });
 });
