@@ -10,7 +10,7 @@
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import type { Page } from '@playwright/test';
-import { expect, newModel, openStudio, settle, shot, test } from './fixture';
+import { clickPatch, expect, newModel, openStudio, settle, shot, test } from './fixture';
 import type { Studio } from './fixture';
 
 /** A coordinate the studio computes from typed numbers (a quarter turn, a scale) is exact to
@@ -325,17 +325,6 @@ async function newModelInView(page: Page, studio: Studio, kind: string, file: st
   await newModel(page, kind, file, u, v);
   await page.getByTestId(`view-${view}`).click();
   await page.waitForTimeout(400);
-}
-
-/** Clicks frame `frame`'s patch in the surface view (shift: adds it to the selection). */
-async function clickPatch(page: Page, frame: number, shift = false): Promise<void> {
-  await expect(async () => {
-    const q = await hook<Point>(page, 'patchScreen', frame);
-    if (shift) await page.keyboard.down('Shift');
-    await page.mouse.click(q.x, q.y);
-    if (shift) await page.keyboard.up('Shift');
-    expect((await hook<{ frames: number[] }>(page, 'selection')).frames).toContain(frame);
-  }).toPass({ timeout: 30000 });
 }
 
 /** The saved file of `name` in the studio's root, after Ctrl+S. */

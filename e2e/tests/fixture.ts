@@ -134,3 +134,14 @@ export async function newModel(page: Page, kind: string, file: string, u = 1, v 
   await expect(page.getByTestId('model-path')).toHaveText(file);
   await expect(page.getByTestId('c0-gap')).toContainText('C0 gap');
 }
+
+/** Clicks frame `frame`'s patch in the surface view (shift: adds it to the selection). */
+export async function clickPatch(page: Page, frame: number, shift = false): Promise<void> {
+  await expect(async () => {
+    const q = await page.evaluate((f) => (window as any).__studio.patchScreen(f), frame);
+    if (shift) await page.keyboard.down('Shift');
+    await page.mouse.click(q.x, q.y);
+    if (shift) await page.keyboard.up('Shift');
+    expect((await page.evaluate(() => (window as any).__studio.selection())).frames).toContain(frame);
+  }).toPass({ timeout: 30000 });
+}
