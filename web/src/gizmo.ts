@@ -283,7 +283,8 @@ export function mountGizmo(studio: Studio): Gizmo {
       const next = on ? GIZMO_MODES[(GIZMO_MODES.indexOf(mode()) + 1) % GIZMO_MODES.length] : mode();
       if (!on) toggle();
       setMode(next);
-      studio.say(`gizmo: ${next === 'translate' ? 'move' : next}`);
+      const curves = !store.state.model && store.state.shape && next !== 'translate';
+      studio.say(`gizmo: ${next === 'translate' ? 'move' : next}${curves ? " (a curve takes the arrows only: Shift+R and Shift+S turn and scale it)" : ''}`);
     },
     handleScreen(axis, angle = 0) {
       if (!helper.visible) return null;
