@@ -149,7 +149,7 @@ test.describe('a Fourier curve (the membrane)', () => {
     await expect(help).toContainText("click / drag a curve's centre mark");
     await expect(help).toContainText("a tangent's tip");
     await help.evaluate((el) => {
-      const row = [...el.querySelectorAll('kbd')].find((k) => k.textContent === 'N')!;
+      const row = Array.from(el.querySelectorAll('kbd')).find((k) => k.textContent === 'N')!;
       el.scrollTop = (row as HTMLElement).getBoundingClientRect().top - el.getBoundingClientRect().top + el.scrollTop - 40;
     });
     await page.waitForTimeout(200);
