@@ -86,14 +86,14 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
       hit = n;
       break;
     }
-    if (out.rmsReached && firstRms == 0) firstRms = n;
     // A layout that made more frames than asked for stands for every count up to them.
-    miss = static_cast<std::uint32_t>(std::max<std::size_t>(n, out.made));
+    const auto stands = static_cast<std::uint32_t>(std::max<std::size_t>(n, out.made));
+    if (out.rmsReached && firstRms == 0) firstRms = stands;
+    miss = stands;
     if (out.made <= previous || n >= options.maxFrames) break;
     previous = out.made;
-    const double from = std::max<double>(n, static_cast<double>(out.made));
     n = static_cast<std::uint32_t>(
-        std::min<double>(options.maxFrames, std::ceil(from * options.growth)));
+        std::min<double>(options.maxFrames, std::ceil(stands * options.growth)));
     if (firstRms > 0 && n > kFoldGrowthLimit * firstRms) break;
   }
   // Bisect (geometrically) between the largest count that missed and the smallest that
