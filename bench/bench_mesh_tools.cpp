@@ -182,7 +182,7 @@ BENCHMARK(BM_FitDevilBaseline)->Repetitions(3)->Unit(benchmark::kMillisecond);
 
 /// Issue 25's target: `rebuild --target-rms 0.2%` on a 30,000-triangle mesh within 60 s of
 /// CPU time. The mesh: CGAL's bear.off (27,648 triangles, closed); the search
-/// `searchTargetRms` with default options (growing from 200 frames, then bisecting), each
+/// `searchTargetRms` with default options (growing from 12 frames, then bisecting), each
 /// trial's layout made, fitted and measured; one thread, so CPU time is the time measured.
 void BM_TargetRmsBear(benchmark::State& state) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);

@@ -9,14 +9,6 @@
 
 namespace pdesurf {
 
-namespace {
-
-/// No layout is asked for with fewer frames than this: the fewest a closed surface's
-/// simplification can give (a tetrahedron's four triangles, three quads each).
-constexpr std::uint32_t kFewestFrames = 12;
-
-}  // namespace
-
 double AutoFit::worseRms() const {
   return std::max(distance.aToB.rmsRelative, distance.bToA.rmsRelative);
 }
@@ -38,6 +30,7 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   TargetSearch search;
   auto rmsReached = [&](const AutoFit& f) { return f.worseRms() <= options.targetRms; };
   auto foldFree = [&](const AutoFit& f) { return f.normals.foldedArea <= options.maxFoldedArea; };
+  auto reached = [&](const AutoFit& f) { return rmsReached(f) && foldFree(f); };
   auto frames = [](const AutoFit& f) { return f.layout.model.frames.size(); };
   // Of two trials that miss, the closer: one that reaches the RMS (folding more than the
   // bound) before one that does not; of two that reach it, the less folded; else the lower
@@ -47,11 +40,15 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
     return rmsReached(a) ? a.normals.foldedArea < b.normals.foldedArea
                          : a.worseRms() < b.worseRms();
   };
-  // Every trial is kept if it is the smallest to reach both so far (`both`), or the closest.
+  // Every fit is kept if it is the smallest to reach both so far (`both`), or the closest.
   std::optional<AutoFit> both, closest;
+  struct Outcome {
+    bool reached, rmsReached;  ///< the target (RMS within the fold bound), the RMS alone
+    std::size_t made;          ///< frames made
+  };
   FitOptions guarded = options.fit;
   guarded.preventFolds = true;
-  auto trial = [&](std::uint32_t n, bool prevent = false) {
+  auto fit = [&](std::uint32_t n, bool prevent) {
     AutoLayoutOptions layout = options.layout;
     layout.frames = n;
     AutoFit f = fitAutoLayout(mesh, layout, prevent ? guarded : options.fit, options.resolution,
@@ -59,87 +56,61 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
     f.foldsPrevented = prevent || options.fit.preventFolds;
     ++search.trials;
     if (options.onTrial) options.onTrial(n, f);
-    if (rmsReached(f) && foldFree(f) && (!both || frames(f) < frames(*both))) both = f;
-    if (!closest || closer(f, *closest)) closest = f;
-    return f;
+    const Outcome out{reached(f), rmsReached(f), frames(f)};
+    if (out.reached && (!both || out.made < frames(*both))) both = f;
+    if (!closest || closer(f, *closest)) closest = std::move(f);
+    return out;
   };
-  // First the RMS alone. The bracket: `miss` frames miss it (0: none tried), `hit` reach it.
+  // One trial of `n` frames: the plain fit, and where it reaches the RMS but folds, the same
+  // layout fitted again with the steps that fold more samples refused (FitOptions::
+  // preventFolds: a higher RMS, fewer folds). It reaches the target if either fit does. The
+  // outcome depends on n and the target alone, never on the trials before it.
+  auto trial = [&](std::uint32_t n) {
+    Outcome out = fit(n, false);
+    if (!out.reached && out.rmsReached && !options.fit.preventFolds)
+      out.reached = fit(n, true).reached;
+    return out;
+  };
+  // Grow from the first count by `growth` until a trial reaches the target (or the layout
+  // stops growing: the mesh is simplified no more). The counts tried depend on the mesh
+  // alone (a layout that makes more frames than asked for, held by creases, is grown from
+  // the frames it made), not on the target, so a looser target's first reaching count is
+  // never above a tighter one's.
   std::uint32_t miss = 0, hit = 0;
-  std::optional<AutoFit> hitFit;
-  std::uint32_t n = std::max(options.layout.frames, kFewestFrames);
-  AutoFit first = trial(n);
-  if (rmsReached(first)) {
-    // Shrink until a layout misses, or the layout stops shrinking.
-    hit = n;
-    std::size_t made = frames(first);
-    hitFit = std::move(first);
-    while (hit > kFewestFrames) {
-      n = std::max(kFewestFrames, static_cast<std::uint32_t>(std::floor(hit / options.growth)));
-      AutoFit f = trial(n);
-      if (frames(f) >= made) break;
-      made = frames(f);
-      if (!rmsReached(f)) {
-        miss = n;
-        break;
-      }
+  std::uint32_t n = std::max(options.firstFrames, kFewestFrames);
+  std::uint32_t firstRms = 0;  // the first count that reached the RMS (folding beyond the bound)
+  std::size_t previous = 0;
+  for (;;) {
+    const Outcome out = trial(n);
+    if (out.reached) {
       hit = n;
-      hitFit = std::move(f);
+      break;
     }
-  } else {
-    // Grow until a layout reaches it, or the layout stops growing (the mesh itself).
-    miss = n;
-    std::size_t made = frames(first);
-    while (n < options.maxFrames) {
-      n = std::min(options.maxFrames, static_cast<std::uint32_t>(std::ceil(n * options.growth)));
-      AutoFit f = trial(n);
-      if (rmsReached(f)) {
-        hit = n;
-        hitFit = std::move(f);
-        break;
-      }
-      miss = n;
-      const bool grew = frames(f) > made;
-      made = frames(f);
-      if (!grew) break;
-    }
+    // A layout that made more frames than asked for stands for every count up to them.
+    const auto stands = static_cast<std::uint32_t>(std::max<std::size_t>(n, out.made));
+    if (out.rmsReached && firstRms == 0) firstRms = stands;
+    miss = stands;
+    if (out.made <= previous || n >= options.maxFrames) break;
+    previous = out.made;
+    n = static_cast<std::uint32_t>(
+        std::min<double>(options.maxFrames, std::ceil(stands * options.growth)));
+    if (firstRms > 0 && n > kFoldGrowthLimit * firstRms) break;
   }
-  if (!hitFit) {
-    search.best = std::move(*closest);
-    return search;
-  }
-  // Bisect (geometrically) between the counts that miss and reach.
-  while (miss > 0 && hit > miss * (1.0 + options.precision)) {
+  // Bisect (geometrically) between the largest count that missed and the smallest that
+  // reached, until they are within `precision` of each other.
+  while (hit > 0 && miss > 0 && hit > miss * (1.0 + options.precision)) {
     const auto mid = static_cast<std::uint32_t>(std::lround(std::sqrt(double(miss) * hit)));
     if (mid <= miss || mid >= hit) break;
-    AutoFit f = trial(mid);
-    if (rmsReached(f) && frames(f) <= frames(*hitFit)) {
+    const Outcome out = trial(mid);
+    if (out.reached)
       hit = mid;
-      hitFit = std::move(f);
-    } else {
-      miss = mid;
-    }
-  }
-  // Then the folds: the smallest layout that reaches the RMS may fold more than the bound
-  // (folds do not fall monotonically with the frame count). Such a layout is fitted again
-  // with the steps that fold more samples refused (FitOptions::preventFolds: a higher RMS,
-  // fewer folds), and the count grows from the smallest by sqrt(growth) a step, up to
-  // kFoldGrowthLimit times it, each count fitted plainly and, where that reaches the RMS
-  // folded, guarded too, until some trial (this one or an earlier, larger one) reaches both.
-  if (!foldFree(*hitFit)) {
-    const double step = std::sqrt(options.growth);
-    for (n = hit; n <= kFoldGrowthLimit * hit && n <= options.maxFrames;
-         n = static_cast<std::uint32_t>(std::ceil(n * step))) {
-      if (both && frames(*both) <= n) break;
-      const bool folded = n == hit || [&] {
-        const AutoFit f = trial(n);
-        return rmsReached(f) && !foldFree(f);
-      }();
-      if (folded && !options.fit.preventFolds && !(both && frames(*both) <= n)) trial(n, true);
-    }
+    else
+      miss = static_cast<std::uint32_t>(std::clamp<std::size_t>(out.made, mid, hit - 1));
   }
   search.best = std::move(both ? *both : *closest);
   search.rmsReached = rmsReached(search.best);
   search.reached = search.rmsReached && foldFree(search.best);
+  search.missedBelow = miss;
   return search;
 }
 
