@@ -64,7 +64,7 @@ void printTrial(const RebuildOptions& options, std::uint32_t requested, const Au
       "trial: {} asked for, {} made{}: model -> mesh RMS {}, mesh -> model RMS {}, folded {} "
       "({})\n",
       count(requested, "frame"), f.layout.model.frames.size(),
-      f.foldsPrevented && !options.preventFolds ? ", steps that fold more refused" : "",
+      f.foldsPrevented && !options.fit.preventFolds ? ", steps that fold more refused" : "",
       percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
       percent(f.normals.foldedArea),
       rms && flat
@@ -78,10 +78,11 @@ void printSearch(const RebuildOptions& options, const RebuildReport& report) {
   const TargetSearchReport& s = *report.search;
   const AutoLayoutReport& best = *report.automatic;
   if (s.reached)
-    fmt::print("target RMS {} reached both ways within {} folded with {}{} ({} tried): {}\n",
-               percent(s.targetRms), percent(s.maxFoldedArea), count(best.frames, "frame"),
-               s.foldsPrevented && !options.preventFolds ? " (steps that fold more refused)" : "",
-               count(s.trials, "layout"), madeLine(best));
+    fmt::print(
+        "target RMS {} reached both ways within {} folded with {}{} ({} tried): {}\n",
+        percent(s.targetRms), percent(s.maxFoldedArea), count(best.frames, "frame"),
+        s.foldsPrevented && !options.fit.preventFolds ? " (steps that fold more refused)" : "",
+        count(s.trials, "layout"), madeLine(best));
   else if (s.rmsReached)
     fmt::print(
         "target RMS {} reached both ways, but every layout that reached it folds more than {} "

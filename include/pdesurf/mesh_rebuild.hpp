@@ -37,7 +37,7 @@ enum class RebuildKind {
 inline constexpr std::uint32_t kDefaultAutoFrames = 200;
 
 /// Everything `pdesurf rebuild` takes, with its defaults. Options of the other kind are
-/// ignored (except fitShape, refused for cross sections).
+/// ignored (except fit.fitShape, refused for cross sections).
 struct RebuildOptions {
   RebuildKind kind = RebuildKind::VertexFrames;
   /// The mesh's name: in error messages, the model's default name and its description.
@@ -59,22 +59,19 @@ struct RebuildOptions {
   std::optional<double> targetRms;
   std::optional<QuadConstruction> quads;  ///< default PairTriangles
   std::optional<double> creaseAngle;      ///< degrees in [0, 180], default 60
-  // The fit (FitOptions).
-  std::uint32_t iterations = 30;  ///< 0 to 100000
-  double tolerance = 1e-3;        ///< [0, 1]
-  double smoothness = 1e-5;       ///< [0, 1e6]
-  std::uint32_t fitSamples = 9;   ///< 0 (automatic) or 3 to 65
-  bool preventFolds = false;
-  double foldWeight = FitOptions{}.conformalWeight;  ///< [0, 1]
-  bool fitShape = false;
+  /// The fit: maxIterations 0 to 100000, tolerance [0, 1], smoothness [0, 1e6],
+  /// samplesPerSide 0 (automatic) or 3 to 65, conformalWeight (--fold-weight) [0, 1];
+  /// preventFolds, fitShape. Its onIteration is RebuildProgress's.
+  FitOptions fit;
   std::uint32_t resolution = 17;  ///< samples per patch side for the measure (2 to 4097)
 
-  // Slicing: the cross sections' planes and the tube's (`count` is the tube's 2R + 1 there).
-  Axis axis = Axis::Z;
-  std::uint32_t count = 25;  ///< sections (2 to 100000)
-  std::optional<std::pair<double, double>> range;
-  std::optional<Vec3> near;
-  bool track = false;
+  /// Slicing: the cross sections' planes and the tube's (`count`, 2 to 100000, is the
+  /// tube's 2R + 1 there).
+  SliceOptions slice = [] {
+    SliceOptions cut;
+    cut.count = 25;
+    return cut;
+  }();
   // Cross sections: the chain.
   std::uint32_t modes = 8;     ///< Fourier modes per section (1 to 256)
   std::uint32_t points = 128;  ///< points per section (8 to 100000, at least 2 modes + 1)

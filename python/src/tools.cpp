@@ -211,26 +211,26 @@ RebuildOptions rebuildOptions(const py::dict& keywords, const std::string& sourc
   }
   if (keywords.contains("crease_angle") && !keywords["crease_angle"].is_none())
     o.creaseAngle = keyword<double>(keywords, "crease_angle", 60.0);
-  o.iterations = countKeyword(keywords, "iterations", o.iterations);
-  o.tolerance = keyword<double>(keywords, "tolerance", o.tolerance);
-  o.smoothness = keyword<double>(keywords, "smoothness", o.smoothness);
-  o.fitSamples = countKeyword(keywords, "fit_samples", o.fitSamples);
-  o.preventFolds = keyword<bool>(keywords, "prevent_folds", o.preventFolds);
-  o.foldWeight = keyword<double>(keywords, "fold_weight", o.foldWeight);
-  o.fitShape = keyword<bool>(keywords, "fit_shape", o.fitShape);
+  o.fit.maxIterations = countKeyword(keywords, "iterations", o.fit.maxIterations);
+  o.fit.tolerance = keyword<double>(keywords, "tolerance", o.fit.tolerance);
+  o.fit.smoothness = keyword<double>(keywords, "smoothness", o.fit.smoothness);
+  o.fit.samplesPerSide = countKeyword(keywords, "fit_samples", o.fit.samplesPerSide);
+  o.fit.preventFolds = keyword<bool>(keywords, "prevent_folds", o.fit.preventFolds);
+  o.fit.conformalWeight = keyword<double>(keywords, "fold_weight", o.fit.conformalWeight);
+  o.fit.fitShape = keyword<bool>(keywords, "fit_shape", o.fit.fitShape);
   o.resolution = countKeyword(keywords, "resolution", o.resolution);
   const std::string axis = keyword<std::string>(keywords, "axis", "z");
   const std::optional<Axis> parsedAxis = parseAxis(axis);
   if (!parsedAxis) badArgument("axis", "'" + axis + "' is not x, y or z");
-  o.axis = *parsedAxis;
-  o.count = countKeyword(keywords, "count", o.count);
+  o.slice.axis = *parsedAxis;
+  o.slice.count = countKeyword(keywords, "count", o.slice.count);
   if (keywords.contains("range") && !keywords["range"].is_none()) {
     const auto r = floatRows(py::make_tuple(keywords["range"]), "range", 2);
-    o.range = std::pair{r.at(0, 0), r.at(0, 1)};
+    o.slice.range = std::pair{r.at(0, 0), r.at(0, 1)};
   }
   if (keywords.contains("near") && !keywords["near"].is_none())
-    o.near = points(floatRows(py::make_tuple(keywords["near"]), "near", 3))[0];
-  o.track = keyword<bool>(keywords, "track", o.track);
+    o.slice.near = points(floatRows(py::make_tuple(keywords["near"]), "near", 3))[0];
+  o.slice.track = keyword<bool>(keywords, "track", o.slice.track);
   o.modes = countKeyword(keywords, "modes", o.modes);
   o.points = countKeyword(keywords, "points", o.points);
   o.a = keyword<double>(keywords, "a", o.a);

@@ -23,34 +23,12 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-SliceOptions sliceOptions(const RebuildOptions& o) {
-  SliceOptions slice;
-  slice.axis = o.axis;
-  slice.count = o.count;
-  slice.range = o.range;
-  slice.near = o.near;
-  slice.track = o.track;
-  return slice;
-}
-
 AutoLayoutOptions autoLayoutOptions(const RebuildOptions& o) {
   AutoLayoutOptions layout;
   layout.frames = o.frames != 0 ? o.frames : kDefaultAutoFrames;
   if (o.creaseAngle) layout.creaseAngle = *o.creaseAngle;
   layout.construction = o.quads.value_or(QuadConstruction::PairTriangles);
   return layout;
-}
-
-FitOptions fitOptions(const RebuildOptions& o) {
-  FitOptions fit;
-  fit.maxIterations = o.iterations;
-  fit.tolerance = o.tolerance;
-  fit.smoothness = o.smoothness;
-  fit.samplesPerSide = o.fitSamples;
-  fit.preventFolds = o.preventFolds;
-  fit.conformalWeight = o.foldWeight;
-  fit.fitShape = o.fitShape;
-  return fit;
 }
 
 AutoLayoutReport layoutReport(const AutoLayout& a, std::uint32_t requested) {
@@ -78,11 +56,8 @@ RebuildResult rebuildVertexFrames(const Mesh& mesh, const RebuildOptions& o,
                                   const RebuildProgress& progress) {
   RebuildReport report;
   std::optional<Mesh> part;
-  const FitOptions fit = [&] {
-    FitOptions f = fitOptions(o);
-    f.onIteration = progress.onIteration;
-    return f;
-  }();
+  FitOptions fit = o.fit;
+  fit.onIteration = progress.onIteration;
   const std::string name =
       o.name.empty() ? std::filesystem::path(o.source).stem().string() + " (vertex frames)"
                      : o.name;
@@ -110,7 +85,7 @@ RebuildResult rebuildVertexFrames(const Mesh& mesh, const RebuildOptions& o,
       layout = gridLayout(mesh, {(*o.grid)[0], (*o.grid)[1]}, o.source);
     } else if (o.tube) {
       // The tube is fitted to, and measured against, the part between its end planes.
-      TubeLayout tube = tubeLayout(mesh, {(*o.tube)[0], (*o.tube)[1], sliceOptions(o)}, o.source);
+      TubeLayout tube = tubeLayout(mesh, {(*o.tube)[0], (*o.tube)[1], o.slice}, o.source);
       layout = std::move(tube.model);
       part = std::move(tube.part);
     } else {
@@ -148,7 +123,7 @@ RebuildResult rebuildCrossSections(const Mesh& mesh, const RebuildOptions& o) {
   RebuildReport report;
   report.kind = RebuildKind::CrossSections;
   SectionRebuildOptions options;
-  options.slice = sliceOptions(o);
+  options.slice = o.slice;
   options.modes = o.modes;
   options.exact = o.exact;
   options.prep.points = o.points;
@@ -164,9 +139,9 @@ RebuildResult rebuildCrossSections(const Mesh& mesh, const RebuildOptions& o) {
   report.to = sections.back().coordinate;
   rebuilt.model.description =
       fmt::format("{} rebuilt by pdesurf rebuild from {} sections along {} in [{}, {}]", o.source,
-                  sections.size(), axisName(o.axis), report.from, report.to);
+                  sections.size(), axisName(o.slice.axis), report.from, report.to);
   t0 = Clock::now();
-  Mesh part = sectionedPart(mesh, o.axis, sections);
+  Mesh part = sectionedPart(mesh, o.slice.axis, sections);
   if (o.measure) {
     const Mesh surface =
         tessellate(rebuilt.chain, chainMeasureOptions(rebuilt.chain.patches.size()));

@@ -114,14 +114,14 @@ void checkVertexFrames(const RebuildOptions& o, const Checker& name) {
                                     "join along both sides)",
                                     name("tube")));
   }
-  name.inRange("iterations", o.iterations, 0u, 100000u);
-  name.inRange("tolerance", o.tolerance, 0.0, 1.0);
-  name.inRange("smoothness", o.smoothness, 0.0, 1e6);
-  if (o.fitSamples == 1 || o.fitSamples == 2 || o.fitSamples > 65)
+  name.inRange("iterations", o.fit.maxIterations, 0u, 100000u);
+  name.inRange("tolerance", o.fit.tolerance, 0.0, 1.0);
+  name.inRange("smoothness", o.fit.smoothness, 0.0, 1e6);
+  if (o.fit.samplesPerSide == 1 || o.fit.samplesPerSide == 2 || o.fit.samplesPerSide > 65)
     name.fail("fit_samples", fmt::format("{} {}: must be 0 (automatic) or 3 to 65",
-                                         name("fit_samples"), o.fitSamples));
-  name.inRange("fold_weight", o.foldWeight, 0.0, 1.0);
-  if (o.fitShape && o.iterations == 0)
+                                         name("fit_samples"), o.fit.samplesPerSide));
+  name.inRange("fold_weight", o.fit.conformalWeight, 0.0, 1.0);
+  if (o.fit.fitShape && o.fit.maxIterations == 0)
     name.fail("fit_shape", fmt::format("{} with {} 0 would fit nothing: the shape is fitted in "
                                        "up to {} iterations after the vertices",
                                        name("fit_shape"), name("iterations"), name("iterations")));
@@ -129,13 +129,13 @@ void checkVertexFrames(const RebuildOptions& o, const Checker& name) {
 }
 
 void checkCrossSections(const RebuildOptions& o, const Checker& name) {
-  if (o.fitShape)
+  if (o.fit.fitShape)
     name.fail("fit_shape", fmt::format("{} fits the force, a1 and a2 of vertex frames: it needs "
                                        "{}",
                                        name("fit_shape"), name("vertex-frames")));
   if (!std::isfinite(o.a) || o.a == 0.0)
     name.fail("a", fmt::format("{} {}: a must be finite and non-zero", name("a"), o.a));
-  name.inRange("count", o.count, 2u, 100000u);
+  name.inRange("count", o.slice.count, 2u, 100000u);
   name.inRange("modes", o.modes, 1u, 256u);
   name.inRange("points", o.points, 8u, 100000u);
   if (o.points < 2 * o.modes + 1)
@@ -152,18 +152,17 @@ void checkRebuildOptions(const RebuildOptions& options, RebuildOptionStyle style
     checkVertexFrames(options, name);
   else
     checkCrossSections(options, name);
-  if (options.range) {
-    SliceOptions slice;
-    slice.range = options.range;
+  if (options.slice.range) {
     try {
-      slicePlanes(slice, 0.0, 1.0);  // the range's own checks
+      slicePlanes(options.slice, 0.0, 1.0);  // the range's own checks
     } catch (const std::invalid_argument& e) {
       name.fail("range", fmt::format("{}: {}", name("range"), e.what()));
     }
   }
-  if (options.near && !options.near->allFinite())
+  if (options.slice.near && !options.slice.near->allFinite())
     name.fail("near", fmt::format("{}: {} {} {} is not a finite point", name("near"),
-                                  options.near->x(), options.near->y(), options.near->z()));
+                                  options.slice.near->x(), options.slice.near->y(),
+                                  options.slice.near->z()));
   name.inRange("samples", options.samples, std::size_t{1}, std::size_t{100000000});
 }
 

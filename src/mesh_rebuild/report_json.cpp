@@ -28,7 +28,7 @@ std::string rebuildReportJson(const RebuildReport& report, const RebuildOptions&
       {"mesh", options.source},
       {"as", rebuildKindName(report.kind)},
       {"output", output},
-      {"axis", axisName(options.axis)},
+      {"axis", axisName(options.slice.axis)},
       {"sections", report.sections},
       {"from", report.from},
       {"to", report.to},

@@ -54,20 +54,20 @@ TEST(RebuildOptions, DefaultsPassAndEachConflictIsNamedInTheFrontEndsSpelling) {
             "frames and target_rms both choose the number of frames: give one of them");
 
   RebuildOptions weight;
-  weight.foldWeight = -1.0;
+  weight.fit.conformalWeight = -1.0;
   EXPECT_EQ(refusal(weight, RebuildOptionStyle::Python).first, "fold_weight");
   RebuildOptions tube;
   tube.tube = {{2, 2}};
   EXPECT_TRUE(contains(refusal(tube, RebuildOptionStyle::Cli).second, "at least 3 sectors"));
   RebuildOptions shape;
-  shape.fitShape = true;
-  shape.iterations = 0;
+  shape.fit.fitShape = true;
+  shape.fit.maxIterations = 0;
   EXPECT_EQ(refusal(shape, RebuildOptionStyle::Cli).first, "fit_shape");
   RebuildOptions samples;
-  samples.fitSamples = 2;
+  samples.fit.samplesPerSide = 2;
   EXPECT_EQ(refusal(samples, RebuildOptionStyle::Cli).first, "fit_samples");
   RebuildOptions range;
-  range.range = {{1.0, 0.0}};
+  range.slice.range = {{1.0, 0.0}};
   EXPECT_EQ(refusal(range, RebuildOptionStyle::Cli).first, "range");
 }
 
@@ -77,9 +77,9 @@ TEST(RebuildOptions, CrossSectionsCheckTheirChainAndRefuseTheShapeFit) {
   o.grid = {{2, 2}};  // vertex frames' options are ignored...
   o.tube = {{2, 4}};
   EXPECT_NO_THROW(checkRebuildOptions(o));
-  o.fitShape = true;  // ...but for the one that says it is refused
+  o.fit.fitShape = true;  // ...but for the one that says it is refused
   EXPECT_TRUE(contains(refusal(o, RebuildOptionStyle::Cli).second, "it needs --as vertex-frames"));
-  o.fitShape = false;
+  o.fit.fitShape = false;
   o.modes = 40;
   o.points = 64;
   EXPECT_EQ(refusal(o, RebuildOptionStyle::Cli).second,
@@ -108,7 +108,7 @@ TEST(Rebuild, GridReportIsTheModelMeasuredAndMoreFramesFitCloser) {
   const Mesh mesh = readMesh(path);
   RebuildOptions o;
   o.source = path;
-  o.iterations = 4;
+  o.fit.maxIterations = 4;
   o.samples = 20000;
   double previous[2] = {1.0, 1.0};
   std::size_t previousBytes = 0;
@@ -153,10 +153,10 @@ TEST(Rebuild, CrossSectionsAreTheSectionRebuildMeasuredAgainstItsPart) {
   RebuildOptions o;
   o.kind = RebuildKind::CrossSections;
   o.source = path;
-  o.axis = Axis::Y;
-  o.range = {{-0.45, -0.32}};
-  o.count = 12;
-  o.near = Vec3(0.117, -0.4, -0.045);
+  o.slice.axis = Axis::Y;
+  o.slice.range = {{-0.45, -0.32}};
+  o.slice.count = 12;
+  o.slice.near = Vec3(0.117, -0.4, -0.045);
   o.samples = 5000;
   const RebuildResult r = rebuild(elephant, o);
   const auto& model = r.model.get<CrossSectionModel>();
