@@ -1,23 +1,19 @@
 #include "rebuild_auto.hpp"
 
-#include <charconv>
-#include <cmath>
-
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
 #include "distance_report.hpp"
-#include "pdesurf/analysis.hpp"
 
 namespace pdesurf::cli {
 
 namespace {
 
-std::string madeLine(const AutoLayout& a) {
+std::string madeLine(const AutoLayoutReport& a) {
   return fmt::format(
       "{} from {} of the mesh simplified by Garland–Heckbert quadrics, {} ({} in one model), "
       "{} kept on frame edges{}",
-      count(a.model.frames.size(), "frame"), count(a.baseTriangles, "triangle"),
+      count(a.frames, "frame"), count(a.baseTriangles, "triangle"),
       count(a.components, "component"), a.components == 1 ? "it" : "all",
       count(a.creaseEdges, "crease or boundary edge"),
       a.skippedTriangles == 0
@@ -48,111 +44,63 @@ void AutoLayoutArgs::add(CLI::App* cmd) {
       ->check(CLI::Range(0.0, 180.0));
 }
 
-void AutoLayoutArgs::check() const {
-  if (frames != 0 && !targetRms.empty())
-    throw UsageError(
-        "--frames and --target-rms both choose the number of frames: give one of them");
+void AutoLayoutArgs::apply(RebuildOptions& options) const {
+  options.frames = frames;
+  if (!targetRms.empty()) options.targetRms = parseTargetRms(targetRms);
+  if (!quads.empty()) options.quads = parseQuadConstruction(quads);
+  if (creaseAngle >= 0.0) options.creaseAngle = creaseAngle;
 }
 
-AutoLayoutOptions AutoLayoutArgs::options() const {
-  AutoLayoutOptions o;
-  o.frames = frames != 0 ? frames : kDefaultAutoFrames;
-  if (creaseAngle >= 0.0) o.creaseAngle = creaseAngle;
-  o.construction =
-      quads == "split" ? QuadConstruction::SplitTriangles : QuadConstruction::PairTriangles;
-  return o;
+void printAutomaticLayout(const AutoLayoutReport& layout) {
+  fmt::print("automatic layout (about {} asked for): {}\n", count(layout.requested, "frame"),
+             madeLine(layout));
 }
 
-double AutoLayoutArgs::target() const {
-  std::string text = targetRms;
-  const bool percentage = !text.empty() && text.back() == '%';
-  if (percentage) text.pop_back();
-  double x = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size())
-    throw UsageError(
-        fmt::format("--target-rms {}: not a number (a fraction of the diagonal such as 0.002, or a "
-                    "percentage such as 0.2%)",
-                    targetRms));
-  if (percentage) x /= 100.0;
-  if (!(x > 0.0 && x < 1.0))
-    throw UsageError(fmt::format(
-        "--target-rms {}: the target must lie between 0 and the whole diagonal (0 and 1, or "
-        "0% and 100%)",
-        targetRms));
-  return x;
+void printTrial(const RebuildOptions& options, std::uint32_t requested, const AutoFit& f) {
+  const double target = options.targetRms.value_or(0.0);
+  const bool rms = f.worseRms() <= target;
+  const bool flat = f.normals.foldedArea <= kMaxFoldedArea;
+  fmt::print(
+      "trial: {} asked for, {} made{}: model -> mesh RMS {}, mesh -> model RMS {}, folded {} "
+      "({})\n",
+      count(requested, "frame"), f.layout.model.frames.size(),
+      f.foldsPrevented && !options.fit.preventFolds ? ", steps that fold more refused" : "",
+      percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
+      percent(f.normals.foldedArea),
+      rms && flat
+          ? fmt::format("reaches {} within {} folded", percent(target), percent(kMaxFoldedArea))
+      : rms ? fmt::format("reaches {} but folds more than {}", percent(target),
+                          percent(kMaxFoldedArea))
+            : fmt::format("misses {}", percent(target)));
 }
 
-VertexFrameModel automaticLayout(const AutoLayoutArgs& args, const Mesh& mesh,
-                                 const std::string& meshPath, bool quiet) {
-  const AutoLayoutOptions options = args.options();
-  AutoLayout a = autoLayout(mesh, options, meshPath);
-  if (!quiet)
-    fmt::print("automatic layout (about {} asked for): {}\n", count(options.frames, "frame"),
-               madeLine(a));
-  return std::move(a.model);
-}
-
-FitResult searchAutomaticLayout(const AutoLayoutArgs& args, const Mesh& mesh,
-                                const std::string& meshPath, const FitOptions& fit,
-                                std::uint32_t resolution, bool quiet, VertexFrameModel& layout) {
-  TargetSearchOptions o;
-  o.targetRms = args.target();
-  o.layout = args.options();
-  o.fit = fit;
-  o.fit.onIteration = nullptr;  // one line a trial instead
-  o.resolution = resolution;
-  o.onTrial = [&](std::uint32_t requested, const AutoFit& f) {
-    if (quiet) return;
-    const bool rms = f.worseRms() <= o.targetRms;
-    const bool flat = f.normals.foldedArea <= o.maxFoldedArea;
+void printSearch(const RebuildOptions& options, const RebuildReport& report) {
+  const TargetSearchReport& s = *report.search;
+  const AutoLayoutReport& best = *report.automatic;
+  if (s.reached)
     fmt::print(
-        "trial: {} asked for, {} made{}: model -> mesh RMS {}, mesh -> model RMS {}, folded {} "
-        "({})\n",
-        count(requested, "frame"), f.layout.model.frames.size(),
-        f.foldsPrevented && !fit.preventFolds ? ", steps that fold more refused" : "",
-        percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
-        percent(f.normals.foldedArea),
-        rms && flat ? fmt::format("reaches {} within {} folded", percent(o.targetRms),
-                                  percent(o.maxFoldedArea))
-        : rms       ? fmt::format("reaches {} but folds more than {}", percent(o.targetRms),
-                                  percent(o.maxFoldedArea))
-                    : fmt::format("misses {}", percent(o.targetRms)));
-  };
-  TargetSearch s = searchTargetRms(mesh, o, meshPath);
-  if (!quiet) {
-    const std::size_t frames = s.best.layout.model.frames.size();
-    if (s.reached)
-      fmt::print(
-          "target RMS {} reached both ways within {} folded with {}{} ({} tried): {}\n",
-          percent(o.targetRms), percent(o.maxFoldedArea), count(frames, "frame"),
-          s.best.foldsPrevented && !fit.preventFolds ? " (steps that fold more refused)" : "",
-          count(s.trials, "layout"), madeLine(s.best.layout));
-    else if (s.rmsReached)
-      fmt::print(
-          "target RMS {} reached both ways, but every layout that reached it folds more than {} "
-          "({} tried, up to {}x the smallest that reached the RMS): the least folded, {}, "
-          "folds {}\n",
-          percent(o.targetRms), percent(o.maxFoldedArea), count(s.trials, "layout"),
-          kFoldGrowthLimit, count(frames, "frame"), percent(s.best.normals.foldedArea));
-    else
-      fmt::print(
-          "target RMS {} NOT reached ({} tried; the layout grows no further): the closest, {}, "
-          "has {} (worse way)\n",
-          percent(o.targetRms), count(s.trials, "layout"), count(frames, "frame"),
-          percent(s.best.worseRms()));
-  }
-  const std::string name = layout.name;
-  layout = std::move(s.best.layout.model);
-  layout.name = name;
-  s.best.fit.model.name = name;
-  return std::move(s.best.fit);
+        "target RMS {} reached both ways within {} folded with {}{} ({} tried): {}\n",
+        percent(s.targetRms), percent(s.maxFoldedArea), count(best.frames, "frame"),
+        s.foldsPrevented && !options.fit.preventFolds ? " (steps that fold more refused)" : "",
+        count(s.trials, "layout"), madeLine(best));
+  else if (s.rmsReached)
+    fmt::print(
+        "target RMS {} reached both ways, but every layout that reached it folds more than {} "
+        "({} tried, up to {}x the smallest that reached the RMS): the least folded, {}, "
+        "folds {}\n",
+        percent(s.targetRms), percent(s.maxFoldedArea), count(s.trials, "layout"), kFoldGrowthLimit,
+        count(best.frames, "frame"), percent(s.foldedArea));
+  else
+    fmt::print(
+        "target RMS {} NOT reached ({} tried; the layout grows no further): the closest, {}, "
+        "has {} (worse way)\n",
+        percent(s.targetRms), count(s.trials, "layout"), count(best.frames, "frame"),
+        percent(s.worseRms));
 }
 
-void printStorageAgainstMesh(const VertexFrameModel& model, const Mesh& mesh) {
-  const std::size_t modelBytes = storageBytes(model), meshBytes = storageBytes(mesh);
-  fmt::print("mesh storage   {} bytes (the model is {:.3g}x of it)\n", meshBytes,
-             double(modelBytes) / double(meshBytes));
+void printStorageAgainstMesh(const RebuildReport& report) {
+  fmt::print("mesh storage   {} bytes (the model is {:.3g}x of it)\n", report.referenceStorageBytes,
+             double(report.storageBytes) / double(report.referenceStorageBytes));
 }
 
 }  // namespace pdesurf::cli

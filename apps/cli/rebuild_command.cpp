@@ -3,43 +3,33 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
-#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "distance_report.hpp"
-#include "pdesurf/analysis.hpp"
 #include "pdesurf/atomic_file.hpp"
-#include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/occt_loft.hpp"
-#include "pdesurf/rebuild.hpp"
-#include "pdesurf/section_rebuild.hpp"
-#include "pdesurf/spectral_io.hpp"
-#include "pdesurf/tube_layout.hpp"
 
 namespace pdesurf::cli {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
-
-/// `compute()`, with the std::invalid_argument a mesh it cannot use throws turned into
-/// MeshIoError "MESH: WHAT<reason>" (exit 1, naming the file).
-template <class Compute>
-auto namingMesh(const std::string& meshPath, std::string_view what, Compute&& compute) {
+/// rebuild(), with the errors of a mesh it cannot use (`Error`: std::invalid_argument for
+/// vertex frames, any for cross sections) turned into MeshIoError "MESH: reason" (exit 1,
+/// naming the file).
+template <class Error>
+RebuildResult namingMesh(const Mesh& mesh, const RebuildOptions& options,
+                         const RebuildProgress& progress = {}) {
   try {
-    return compute();
-  } catch (const std::invalid_argument& e) {
-    throw MeshIoError(fmt::format("{}: {}{}", meshPath, what, e.what()));
+    return rebuild(mesh, options, progress);
+  } catch (const Error& e) {
+    throw MeshIoError(fmt::format("{}: {}", options.source, e.what()));
   }
 }
 
@@ -74,12 +64,6 @@ class ProgressBar {
   std::uint32_t total_;
   bool enabled_, drawn_ = false;
 };
-
-Json oneWay(const OneWayDistance& d) {
-  return {{"rms", d.rms},   {"rms_relative", d.rmsRelative},
-          {"mean", d.mean}, {"mean_relative", d.meanRelative},
-          {"max", d.max},   {"max_relative", d.maxRelative}};
-}
 
 }  // namespace
 
@@ -186,185 +170,115 @@ CLI::App* RebuildCommand::add(CLI::App& app) {
 
 int RebuildCommand::run() const {
   try {
-    return as == "vertex-frames" ? runVertexFrames() : runCrossSections();
+    if (as == "vertex-frames" && outPath.empty())
+      throw RebuildUsageError("--as vertex-frames: -o MODEL.json is required");
+    const RebuildOptions o = options();
+    checkRebuildOptions(o);
+    if (as == "cross-sections" && !outPath.empty() && !outPath.ends_with(".json"))
+      throw RebuildUsageError(fmt::format("-o {}: a model file ends in .json", outPath));
+    return o.kind == RebuildKind::VertexFrames ? runVertexFrames(o) : runCrossSections(o);
   } catch (const RebuildUsageError& e) {
+    fmt::print(stderr, "pdesurf: {}\n", e.what());
+    return kExitUsage;
+  } catch (const RebuildOptionError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());
     return kExitUsage;
   }
 }
 
-SliceOptions RebuildCommand::sliceOptions() const {
-  return sliceOptionsFrom<RebuildUsageError>(axis, sectionCount, range, near, track);
+RebuildOptions RebuildCommand::options() const {
+  RebuildOptions o;
+  o.kind = *parseRebuildKind(as);
+  o.source = meshPath;
+  o.name = name;
+  const VertexFrameRebuildArgs& v = vertexFrames;
+  o.quadsPath = v.layoutPath;
+  if (!v.grid.empty()) o.grid = {v.grid[0], v.grid[1]};
+  if (!v.tube.empty()) o.tube = {v.tube[0], v.tube[1]};
+  v.automatic.apply(o);
+  o.fit.maxIterations = v.iterations;
+  o.fit.tolerance = v.tolerance;
+  o.fit.smoothness = v.smoothness;
+  o.fit.samplesPerSide = v.samples;
+  o.fit.preventFolds = v.preventFolds;
+  o.fit.conformalWeight = v.conformalWeight;
+  o.fit.fitShape = v.fitShape;
+  o.resolution = resolution;
+  o.slice = sliceOptionsFrom<RebuildUsageError>(axis, sectionCount, range, near, track);
+  o.modes = modes;
+  o.points = points;
+  o.a = a;
+  o.ends = *parseChainEnds(ends);
+  o.exact = exact;
+  o.samples = samples;
+  // Vertex frames measure what they print: nothing with --quiet.
+  o.measure = o.kind == RebuildKind::CrossSections || !quiet;
+  return o;
 }
 
-int RebuildCommand::runCrossSections() const {
-  if (vertexFrames.fitShape)
-    throw RebuildUsageError(
-        "--fit-shape fits the force, a1 and a2 of vertex frames: it needs --as vertex-frames");
-  if (!std::isfinite(a) || a == 0.0)
-    throw RebuildUsageError(fmt::format("--a {}: a must be finite and non-zero", a));
-  if (points < 2 * modes + 1)
-    throw RebuildUsageError(
-        fmt::format("--points {} cannot determine --modes {}: give at least {} points", points,
-                    modes, 2 * modes + 1));
-  if (!outPath.empty() && !outPath.ends_with(".json"))
-    throw RebuildUsageError(fmt::format("-o {}: a model file ends in .json", outPath));
-  SectionRebuildOptions options;
-  options.slice = sliceOptions();
-  options.modes = modes;
-  options.exact = exact;
-  options.prep.points = points;
-  options.a = a;
-  options.ends = ends == "natural" ? ChainEnds::Natural : ChainEnds::Estimated;
-  options.name = name.empty() ? modelName("", meshPath) : name;
+int RebuildCommand::runCrossSections(const RebuildOptions& o) const {
   auto t0 = Clock::now();
   const Mesh mesh = readTriangles(meshPath);
   const double readMs = msSince(t0);
-  t0 = Clock::now();
-  SectionRebuild rebuilt;
-  try {
-    rebuilt = rebuildFromSections(mesh, options);
-  } catch (const std::exception& e) {
-    throw MeshIoError(fmt::format("{}: {}", meshPath, e.what()));
-  }
-  const double rebuildMs = msSince(t0);
-  const auto& sections = rebuilt.sections;
-  rebuilt.model.description =
-      fmt::format("{} rebuilt by pdesurf rebuild from {} sections along {} in [{}, {}]", meshPath,
-                  sections.size(), axis, sections.front().coordinate, sections.back().coordinate);
-  t0 = Clock::now();
-  const Mesh part = sectionedPart(mesh, options.slice.axis, sections);
-  const Mesh surface = tessellate(rebuilt.chain, chainMeasureOptions(rebuilt.chain.patches.size()));
-  DistanceOptions distanceOptions;
-  distanceOptions.samples = samples;
-  const MeshDistance d = namingMesh(
-      meshPath, "the rebuilt part: ", [&] { return meshDistance(surface, part, distanceOptions); });
-  const NormalDeviation normals =
-      namingMesh(meshPath, "the rebuilt part: ", [&] { return normalDeviation(surface, part); });
-  const double measureMs = msSince(t0);
+  RebuildResult rebuilt = namingMesh<std::exception>(mesh, o);
+  RebuildReport& report = rebuilt.report;
+  report.ms.read = readMs;
+  const Mesh& part = *rebuilt.part;
+  const MeshDistance& d = report.distance;
   // The peer: Open CASCADE's loft through the same sections, measured the same way.
-  std::optional<MeshDistance> loftDistance;
-  std::string loftFailure;
   if (loft) {
+    report.loft.emplace();
     try {
       const Mesh lofted = occtLoft(rebuilt.prepared, kLoftDeflection * d.diagonal);
-      loftDistance = meshDistance(lofted, part, distanceOptions);
+      DistanceOptions distanceOptions;
+      distanceOptions.samples = samples;
+      report.loft->distance = meshDistance(lofted, part, distanceOptions);
     } catch (const std::exception& e) {
-      loftFailure = e.what();
+      report.loft->failure = e.what();
     }
   }
   if (!partPath.empty()) writeMesh(part, partPath);
   if (!outPath.empty()) writeFileAtomically(outPath, serializeModel(rebuilt.model));
-  const std::size_t modelBytes = storageBytes(rebuilt.model), partBytes = storageBytes(part);
   if (json) {
-    Json j = {{"mesh", meshPath},
-              {"as", as},
-              {"output", outPath},
-              {"axis", axis},
-              {"sections", sections.size()},
-              {"from", sections.front().coordinate},
-              {"to", sections.back().coordinate},
-              {"modes", modes},
-              {"exact", exact},
-              {"a", a},
-              {"ends", ends},
-              {"diagonal", d.diagonal},
-              {"model_to_part", oneWay(d.aToB)},
-              {"part_to_model", oneWay(d.bToA)},
-              {"normals", normalsJson(normals)},
-              {"model_storage_bytes", modelBytes},
-              {"part_storage_bytes", partBytes},
-              {"part_triangles", part.triangleCount()},
-              {"part_vertices", part.vertexCount()},
-              {"ms", {{"read", readMs}, {"rebuild", rebuildMs}, {"measure", measureMs}}}};
-    if (loftDistance)
-      j["loft"] = {{"model_to_part", oneWay(loftDistance->aToB)},
-                   {"part_to_model", oneWay(loftDistance->bToA)}};
-    else if (loft)
-      j["loft"] = {{"failed", loftFailure}};
-    std::cout << j.dump(2) << '\n';
+    std::cout << rebuildReportJson(report, o, outPath) << '\n';
     return 0;
   }
   fmt::print(
       "{}: {} sections along {} from {} to {}, {} modes{}, global C4 chain (a = {}, {} "
       "ends){}\n",
-      options.name, sections.size(), axis, sections.front().coordinate, sections.back().coordinate,
-      modes, exact ? " + exact remainder" : "", a, ends, outPath.empty() ? "" : " -> " + outPath);
-  fmt::print("part of the mesh: {}, {}, diagonal {:.6g}\n", count(part.vertexCount(), "vertex"),
-             count(part.triangleCount(), "triangle"), d.diagonal);
+      report.name, report.sections, axis, report.from, report.to, modes,
+      exact ? " + exact remainder" : "", a, ends, outPath.empty() ? "" : " -> " + outPath);
+  fmt::print("part of the mesh: {}, {}, diagonal {:.6g}\n",
+             count(report.referenceVertices, "vertex"),
+             count(report.referenceTriangles, "triangle"), d.diagonal);
   printOneWay("model -> part", d.aToB, 4);
   printOneWay("part -> model", d.bToA, 4);
-  printNormals(normals);
-  if (loftDistance) {
-    printOneWay("OCCT loft -> part", loftDistance->aToB, 4);
-    printOneWay("part -> OCCT loft", loftDistance->bToA, 4);
-  } else if (loft) {
-    fmt::print("OCCT loft: failed ({})\n", loftFailure);
+  printNormals(report.normals);
+  if (report.loft && report.loft->distance) {
+    printOneWay("OCCT loft -> part", report.loft->distance->aToB, 4);
+    printOneWay("part -> OCCT loft", report.loft->distance->bToA, 4);
+  } else if (report.loft) {
+    fmt::print("OCCT loft: failed ({})\n", report.loft->failure);
   }
   fmt::print(
       "storage: model {} bytes, part of the mesh {} bytes ({:.3g}x; numbers to six "
       "significant digits)\n",
-      modelBytes, partBytes, double(modelBytes) / double(partBytes));
+      report.storageBytes, report.referenceStorageBytes,
+      double(report.storageBytes) / double(report.referenceStorageBytes));
   fmt::print("(read {:.1f} ms, slice + prepare + fit + solve {:.1f} ms, measure {:.1f} ms)\n",
-             readMs, rebuildMs, measureMs);
+             readMs, report.ms.fit, report.ms.measure);
   return 0;
 }
 
-int RebuildCommand::runVertexFrames() const {
+int RebuildCommand::runVertexFrames(const RebuildOptions& o) const {
   const VertexFrameRebuildArgs& args = vertexFrames;
-  if (outPath.empty()) throw RebuildUsageError("--as vertex-frames: -o MODEL.json is required");
-  const int layouts =
-      int(!args.layoutPath.empty()) + int(!args.grid.empty()) + int(!args.tube.empty());
-  if (layouts > 1)
-    throw RebuildUsageError(
-        "--as vertex-frames: give one of --layout QUADS, --grid U V and --tube RINGS SECTORS "
-        "(or none of them: the automatic layout)");
-  const bool automatic = layouts == 0;
-  if (!automatic && args.automatic.given())
-    throw RebuildUsageError(
-        "--frames, --target-rms, --quads and --crease-angle shape the automatic layout: not "
-        "with --layout, --grid or --tube");
-  args.automatic.check();
-  const bool search = automatic && !args.automatic.targetRms.empty();
-  if (search) args.automatic.target();  // a bad target is a usage error before any work
-  if (!args.tube.empty() && args.tube[1] < 3)
-    throw RebuildUsageError(
-        "--tube: a tube needs at least 3 sectors round it (two would join along both sides)");
-  if (args.fitShape && args.iterations == 0)
-    throw RebuildUsageError(
-        "--fit-shape with --iterations 0 would fit nothing: the shape is fitted in up to "
-        "--iterations iterations after the vertices");
-  const SliceOptions slice = sliceOptions();
-
   auto t0 = Clock::now();
-  Mesh mesh = readTriangles(meshPath);
-  VertexFrameModel layout;
-  if (!args.layoutPath.empty()) {
-    layout = quadLayout(readPolygonMesh(args.layoutPath), args.layoutPath);
-  } else if (automatic) {
-    if (!search) layout = automaticLayout(args.automatic, mesh, meshPath, quiet);
-  } else if (!args.grid.empty()) {
-    layout = gridLayout(mesh, {args.grid[0], args.grid[1]}, meshPath);
-  } else {
-    // The tube is fitted to, and measured against, the part between its end planes.
-    TubeLayout tube = tubeLayout(mesh, {args.tube[0], args.tube[1], slice}, meshPath);
-    layout = std::move(tube.model);
-    mesh = std::move(tube.part);
-    if (!partPath.empty()) writeMesh(mesh, partPath);
-  }
-  layout.name = std::filesystem::path(meshPath).stem().string() + " (vertex frames)";
-  const double layoutMs = msSince(t0);
+  const Mesh mesh = readTriangles(meshPath);
+  const double readMs = msSince(t0);
 
-  FitOptions options;
-  options.maxIterations = args.iterations;
-  options.tolerance = args.tolerance;
-  options.smoothness = args.smoothness;
-  options.samplesPerSide = args.samples;
-  options.preventFolds = args.preventFolds;
-  options.conformalWeight = args.conformalWeight;
-  options.fitShape = args.fitShape;
   ProgressBar bar(args.fitShape ? 2 * args.iterations : args.iterations, !quiet);
-  options.onIteration = [&](const FitIteration& it) {
+  RebuildProgress progress;
+  progress.onIteration = [&](const FitIteration& it) {
     bar.update(it.iteration, it.measure.rms());
     if (quiet) return;
     const FitMeasure& m = it.measure;
@@ -379,33 +293,32 @@ int RebuildCommand::runVertexFrames() const {
         percent(m.rmsToModel), percent(m.meanToModel), percent(m.maxToModel), percent(m.foldedArea),
         m.foldedSamples, m.samples);
   };
-  t0 = Clock::now();
-  const FitResult fitted = namingMesh(meshPath, "", [&] {
-    return search ? searchAutomaticLayout(args.automatic, mesh, meshPath, options, resolution,
-                                          quiet, layout)
-                  : fitVertexFrames(layout, mesh, options);
-  });
-  const double fitMs = msSince(t0);
-
-  writeFileAtomically(outPath, serializeVertexFrameModel(fitted.model));
+  if (!quiet) {
+    progress.onLayout = printAutomaticLayout;
+    progress.onTrial = [&](std::uint32_t requested, const AutoFit& f) {
+      printTrial(o, requested, f);
+    };
+  }
+  const RebuildResult rebuilt = namingMesh<std::invalid_argument>(mesh, o, progress);
+  const RebuildReport& report = rebuilt.report;
+  if (report.search && !quiet) printSearch(o, report);
+  // The tube's part: what the model was fitted to and measured against.
+  if (rebuilt.part && !partPath.empty()) writeMesh(*rebuilt.part, partPath);
+  writeFileAtomically(outPath, serializeModel(rebuilt.model));
   if (quiet) return 0;
-  const VertexFrameSurface surface = solve(fitted.model);
-  const Mesh tessellated = tessellate(surface, {resolution});
-  const MeshDistance d = meshDistance(tessellated, mesh);
-  const NormalDeviation normals = normalDeviation(tessellated, mesh);
-  fmt::print("{}: {}\n", outPath, fitted.stopReason);
-  fmt::print("{}: {}, {}, {} -> {} (layout {:.1f} ms, fit {:.1f} ms)\n", layout.name,
-             count(fitted.model.frames.size(), "frame"),
-             count(fitted.model.vertices.size(), "vertex"),
-             count(fitted.iterations.size() - 1, "iteration"), outPath, layoutMs, fitMs);
+  const MeshDistance& d = report.distance;
+  fmt::print("{}: {}\n", outPath, report.stopReason);
+  fmt::print("{}: {}, {}, {} -> {} (layout {:.1f} ms, fit {:.1f} ms)\n", report.name,
+             count(report.frames, "frame"), count(report.vertices, "vertex"),
+             count(report.iterations.size() - 1, "iteration"), outPath, readMs + report.ms.layout,
+             report.ms.fit);
   fmt::print("{} at resolution {}; {}{}: {}, bounding-box diagonal {:.6g}\n", outPath, resolution,
-             meshPath, args.tube.empty() ? "" : " (the part between the end planes)",
-             count(mesh.triangleCount(), "triangle"), d.diagonal);
+             meshPath, o.tube ? " (the part between the end planes)" : "",
+             count(report.referenceTriangles, "triangle"), d.diagonal);
   printDistances(d);
-  printNormals(normals);
-  fmt::print("storage        {} bytes (numbers to six significant digits)\n",
-             storageBytes(fitted.model));
-  if (automatic) printStorageAgainstMesh(fitted.model, mesh);
+  printNormals(report.normals);
+  fmt::print("storage        {} bytes (numbers to six significant digits)\n", report.storageBytes);
+  if (report.automatic) printStorageAgainstMesh(report);
   return 0;
 }
 

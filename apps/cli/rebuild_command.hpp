@@ -1,5 +1,7 @@
 // `pdesurf rebuild`: a mesh rebuilt as a model of one of pdesurf's methods, with its distance
-// to the mesh and its storage (docs/rebuild.md).
+// to the mesh and its storage (docs/rebuild.md). The work is the library's rebuild()
+// (include/pdesurf/mesh_rebuild.hpp); the command parses the options, writes the files and
+// prints the report.
 #pragma once
 
 #include <cstddef>
@@ -9,7 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "pdesurf/mesh_slice.hpp"
+#include "pdesurf/mesh_rebuild.hpp"
 #include "rebuild_auto.hpp"
 
 namespace pdesurf::cli {
@@ -56,10 +58,11 @@ struct RebuildCommand {
   int run() const;
 
  private:
-  int runCrossSections() const;
-  /// --axis, --count, --range, --near, --track as slicing options (usage errors thrown).
-  SliceOptions sliceOptions() const;
-  int runVertexFrames() const;
+  /// The library's options from the command's (a bad --range, --near or --target-rms
+  /// throws).
+  RebuildOptions options() const;
+  int runCrossSections(const RebuildOptions& options) const;
+  int runVertexFrames(const RebuildOptions& options) const;
 };
 
 }  // namespace pdesurf::cli

@@ -14,7 +14,6 @@ docs/python.md lists every function.
 
 import json as _json
 import os as _os
-import pathlib as _pathlib
 
 import numpy as _np
 
@@ -156,14 +155,6 @@ def slice(mesh, axis="z", count=10, range=None, near=None, track=False):  # noqa
     return _core.slice_mesh(_with_triangles(m, source), axis, count, range, near, track)
 
 
-def _pair(value, name, what):
-    try:
-        first, second = (int(x) for x in value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name}: expected {what}, got {value!r}") from None
-    return first, second
-
-
 def _fraction(value, name):
     """A fraction given as a number or a string ('0.002' or '0.2%')."""
     text = str(value).strip()
@@ -178,31 +169,11 @@ def _fraction(value, name):
     return x
 
 
-def _vertex_frame_options(grid, layout, tube, frames, target_rms, quads, crease_angle,
-                          iterations, fit_samples, fit_shape, resolution):
-    """rebuild's vertex-frame options checked before any work (pdesurf.batch checks a
-    collection's options with it before starting) -> (layouts given, target_rms as a
-    fraction or None). Raises ValueError naming the option."""
-    layouts = sum(x is not None for x in (grid, layout, tube))
-    automatic_options = (frames, target_rms, quads, crease_angle)
-    if layouts > 1:
-        raise ValueError("kind='vertex-frames': give at most one of grid=(U, V), "
-                         "layout=QUADS_FILE and tube=(RINGS, SECTORS)")
-    if layouts == 1 and any(x is not None for x in automatic_options):
-        raise ValueError("frames, target_rms, quads and crease_angle shape the automatic "
-                         "layout: not with grid, layout or tube")
-    if frames is not None and target_rms is not None:
-        raise ValueError("frames: frames and target_rms both choose the number of frames: "
-                         "give one of them")
-    target = _fraction(target_rms, "target_rms") if target_rms is not None else None
-    if fit_shape and iterations == 0:
-        raise ValueError("fit_shape with iterations=0 would fit nothing")
-    # The fit's options before the layout's work (_core.fit checks them too).
-    if not 0 <= fit_samples <= 65 or fit_samples in (1, 2):
-        raise ValueError(f"fit_samples: must be 0 (automatic) or 3 to 65, got {fit_samples}")
-    if resolution < 2 or resolution > 4097:
-        raise ValueError(f"resolution: must be 2 to 4097, got {resolution}")
-    return layouts, target
+def _check_rebuild_options(options):
+    """rebuild's keywords checked before any work, as `pdesurf rebuild` checks its options
+    (the library's checkRebuildOptions; pdesurf.batch checks a collection's options with it
+    before starting). Raises ValueError naming the option."""
+    _core.check_rebuild_options(**options)
 
 
 def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=None, tube=None,
@@ -211,7 +182,8 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
             crease_angle=None, resolution=17, samples=100000, axis="z", count=25, range=None,
             near=None, track=False, modes=8, points=128, a=1.0, ends="natural", exact=False,
             name=None, progress=None):
-    """Rebuilds a mesh as a model, as `pdesurf rebuild` does -> (model, report).
+    """Rebuilds a mesh as a model, as `pdesurf rebuild` does (the same library call) ->
+    (model, report).
 
     The mesh: (vertices, triangles) arrays, a Mesh, or a mesh file's path (then triangles is
     None). kind="vertex-frames" fits a layout of frames, one of grid=(U, V) (a grid on a
@@ -219,71 +191,27 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     part chosen by axis, range, near, track), or, with none of them, the automatic layout of
     any mesh: about `frames` frames (default 200), or the smallest whose fitted model reaches
     target_rms both ways (a fraction of the diagonal, 0.002, or a string '0.2%'), shaped by
-    quads ('pair' or 'split') and crease_angle (degrees, default 60); with iterations, tolerance, smoothness,
-    fit_samples, prevent_folds, fold_weight (--fold-weight), fit_shape as the CLI's options; progress(iteration), if
-    given, is called after each iteration. kind="cross-sections" slices the mesh (axis, count,
-    range, near, track), fits each section by `modes` Fourier modes over `points` points and
-    joins them by the C4 chain (a, ends: "natural" or "estimated", exact).
+    quads ('pair' or 'split') and crease_angle (degrees, default 60); with iterations,
+    tolerance, smoothness, fit_samples, prevent_folds, fold_weight (--fold-weight),
+    fit_shape as the CLI's options; progress(iteration), if given, is called after each
+    iteration. kind="cross-sections" slices the mesh (axis, count, range, near, track), fits
+    each section by `modes` Fourier modes over `points` points and joins them by the C4
+    chain (a, ends: "natural" or "estimated", exact). The options are checked as the CLI
+    checks them: ValueError names the first that cannot be used.
 
     report: "rms" (model -> mesh, mesh -> model), "mean", "max": relative to the mesh's (or
-    the part's) bounding-box diagonal; "distances" (as compare's), "storage_bytes" (the
-    seed's Table 1 convention); vertex frames also "iterations", "stop_reason"; cross sections
-    and tubes "part" (the mesh part measured against), cross sections "sections"; the automatic
-    layout "mesh_storage_bytes", and with target_rms "target_reached" and "trials".
+    the part's) bounding-box diagonal; "distances" (as compare's), "normals" (folded_area,
+    rms_degrees, reversed: the model's normals against the mesh's), "storage_bytes" (the
+    seed's Table 1 convention); vertex frames also "frames", "iterations", "stop_reason";
+    cross sections and tubes "part" (the mesh part measured against), cross sections
+    "sections" and "part_storage_bytes"; the automatic layout "mesh_storage_bytes", and with
+    target_rms "target_reached", "rms_reached" and "trials".
     The GIL is released while fitting and measuring.
     """
+    options = {key: value for key, value in locals().items()
+               if key not in ("vertices", "triangles", "progress")}
     mesh, source = _as_mesh(vertices, triangles, name="vertices")
-    mesh = _with_triangles(mesh, source)
-    if kind == "cross-sections":
-        if fit_shape:
-            raise ValueError("fit_shape: fits vertex frames; it needs kind='vertex-frames'")
-        display = name or source.rsplit("/", 1)[-1]
-        model, part, surface, sections, storage = _core.rebuild_sections(
-            mesh, axis, count, range, near, track, modes, points, a, ends, exact, display, source)
-        report = {"part": part, "sections": sections, "storage_bytes": storage,
-                  "part_storage_bytes": _core.storage_bytes(part)}
-        measured, reference = surface, part
-    elif kind == "vertex-frames":
-        layouts, target = _vertex_frame_options(grid, layout, tube, frames, target_rms, quads,
-                                                crease_angle, iterations, fit_samples,
-                                                fit_shape, resolution)
-        report = {}
-        stem = _pathlib.PurePath(source).stem if source[0] != "<" else "mesh"
-        model_name = name or f"{stem} (vertex frames)"
-        auto = (frames or 200, 60.0 if crease_angle is None else crease_angle, quads or "pair")
-        if layouts == 0 and target is not None:
-            model, its, stop, reached, trials = _core.search_target_rms(
-                mesh, target, *auto, iterations, tolerance, smoothness, fit_samples,
-                prevent_folds, fold_weight, fit_shape, resolution, model_name, source)
-            report.update(target_reached=reached, trials=trials)
-        elif layout is not None:
-            start = _core.quad_layout(_os.fspath(layout))
-        elif grid is not None:
-            start = _core.grid_layout(mesh, *_pair(grid, "grid", "(U, V)"), source)
-        elif layouts == 0:
-            start = _core.auto_layout(mesh, *auto, source)
-        else:
-            rings, sectors = _pair(tube, "tube", "(RINGS, SECTORS)")
-            start, mesh = _core.tube_layout(mesh, rings, sectors, axis, range, near, track,
-                                            source)
-            report["part"] = mesh
-        if layouts > 0 or target is None:
-            start = _core.with_name(start, model_name)
-            model, its, stop = _core.fit(start, mesh, iterations, tolerance, smoothness,
-                                         fit_samples, prevent_folds, fold_weight, fit_shape,
-                                         progress)
-        if layouts == 0:
-            report["mesh_storage_bytes"] = _core.storage_bytes(mesh)
-        report.update(iterations=its, stop_reason=stop, storage_bytes=_core.storage_bytes(model))
-        measured, reference = model.solve().tessellate(resolution), mesh
-    else:
-        raise ValueError(f"kind: '{kind}' is neither 'vertex-frames' nor 'cross-sections'")
-    d = _core.distance(measured, reference, samples)
-    ways = (d["model_to_mesh"], d["mesh_to_model"])
-    report.update(kind=kind, rms=tuple(w["rms_relative"] for w in ways),
-                  mean=tuple(w["mean_relative"] for w in ways),
-                  max=tuple(w["max_relative"] for w in ways), distances=d)
-    return model, report
+    return _core.rebuild(_with_triangles(mesh, source), source, progress, **options)
 
 
 def polygon_peer(truth, target_rms, samples=100000):

@@ -22,7 +22,7 @@ import threading
 import time
 
 from . import _batch_fit
-from . import _vertex_frame_options
+from . import _check_rebuild_options
 
 MESH_SUFFIXES = (".off", ".obj", ".ply", ".stl")
 RESULTS = "results.csv"
@@ -390,13 +390,7 @@ def check_options(options, workers, threads, timeout):
     if kind not in ("vertex-frames", "cross-sections"):
         raise UsageError(f"--as: '{kind}' is neither vertex-frames nor cross-sections")
     try:
-        if kind == "vertex-frames":
-            _vertex_frame_options(
-                options.get("grid"), options.get("layout"), options.get("tube"),
-                options.get("frames"), options.get("target_rms"), options.get("quads"),
-                options.get("crease_angle"), options.get("iterations", 30),
-                options.get("fit_samples", 9), options.get("fit_shape", False),
-                options.get("resolution", 17))
+        _check_rebuild_options(options)
     except ValueError as e:
         raise UsageError(str(e)) from None
     if options.get("layout") is not None:

@@ -1,13 +1,15 @@
-// pdesurf._core's mesh tools: distances between meshes, slicing, the steps of a rebuild
-// (layouts, the fit, the cross-section rebuild) and STEP/IGES export. pdesurf/_tools.py puts
-// the steps together as `pdesurf rebuild` does (apps/cli/rebuild_command.cpp).
+// pdesurf._core's mesh tools: distances between meshes, slicing, the library's rebuild (the
+// one `pdesurf rebuild` calls: include/pdesurf/mesh_rebuild.hpp) and STEP/IGES export.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -18,14 +20,11 @@
 
 #include "core.hpp"
 #include "pdesurf/analysis.hpp"
-#include "pdesurf/auto_layout.hpp"
 #include "pdesurf/cad_export.hpp"
 #include "pdesurf/mesh_distance.hpp"
+#include "pdesurf/mesh_rebuild.hpp"
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/model_io.hpp"
-#include "pdesurf/rebuild.hpp"
-#include "pdesurf/section_rebuild.hpp"
-#include "pdesurf/tube_layout.hpp"
 #include "peers.hpp"
 
 namespace pdesurf::python {
@@ -52,6 +51,14 @@ DistanceOptions sampled(std::size_t samples) {
   return options;
 }
 
+/// Both ways, with the keys of `pdesurf compare --json`.
+py::dict distanceDict(const MeshDistance& d) {
+  using py::arg;
+  return py::dict(arg("diagonal") = d.diagonal, arg("model_to_mesh") = oneWay(d.aToB),
+                  arg("mesh_to_model") = oneWay(d.bToA), arg("hausdorff") = d.hausdorff,
+                  arg("hausdorff_relative") = d.hausdorffRelative);
+}
+
 py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
   const DistanceOptions options = sampled(samples);
   MeshDistance d;
@@ -59,10 +66,7 @@ py::dict distance(const Mesh& a, const Mesh& b, std::size_t samples) {
     py::gil_scoped_release release;
     d = meshDistance(a, b, options);
   }
-  using py::arg;
-  return py::dict(arg("diagonal") = d.diagonal, arg("model_to_mesh") = oneWay(d.aToB),
-                  arg("mesh_to_model") = oneWay(d.bToA), arg("hausdorff") = d.hausdorff,
-                  arg("hausdorff_relative") = d.hausdorffRelative);
+  return distanceDict(d);
 }
 
 /// The polygon peer (apps/accuracy/peers.hpp): `truth` simplified to the fewest edges whose
@@ -118,14 +122,130 @@ py::list sectionList(const std::vector<MeshSection>& sections) {
   return out;
 }
 
-Model frameModel(VertexFrameModel model, const std::string& source) {
-  return {std::make_shared<const AnyModel>(std::move(model)), source};
+/// A keyword of rebuild as T, None meaning `fallback`; a value of another type is a
+/// ValueError naming the keyword.
+template <class T>
+T keyword(const py::dict& keywords, const char* name, T fallback) {
+  if (!keywords.contains(name) || keywords[name].is_none()) return fallback;
+  try {
+    return keywords[name].cast<T>();
+  } catch (const py::cast_error&) {
+    badArgument(name, "expected a " +
+                          std::string(std::is_same_v<T, bool>     ? "bool"
+                                      : std::is_same_v<T, double> ? "number"
+                                                                  : "string") +
+                          ", got " + py::repr(keywords[name]).cast<std::string>());
+  }
 }
 
-const VertexFrameModel& framesOf(const Model& model, const char* name) {
-  const auto* frames = model.model->as<VertexFrameModel>();
-  if (!frames) badArgument(name, "a vertex-frames model is needed");
-  return *frames;
+/// A count keyword: an integer in [0, 2^32).
+std::uint32_t countKeyword(const py::dict& keywords, const char* name, std::uint32_t fallback) {
+  if (!keywords.contains(name) || keywords[name].is_none()) return fallback;
+  const py::object value = keywords[name];
+  if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
+    badArgument(name, "expected an integer, got " + py::repr(value).cast<std::string>());
+  const long long n = value.cast<long long>();
+  if (n < 0 || n > 0xffffffffLL) badArgument(name, "must be 0 or more, got " + std::to_string(n));
+  return static_cast<std::uint32_t>(n);
+}
+
+/// (U, V) or (RINGS, SECTORS): two counts, or none.
+std::optional<std::array<std::uint32_t, 2>> pairKeyword(const py::dict& keywords, const char* name,
+                                                        const char* what) {
+  if (!keywords.contains(name) || keywords[name].is_none()) return std::nullopt;
+  const py::object value = keywords[name];
+  const auto bad = [&] {
+    badArgument(name,
+                std::string("expected ") + what + ", got " + py::repr(value).cast<std::string>());
+  };
+  if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::len(value) != 2)
+    bad();
+  py::dict both;
+  both["first"] = value[py::int_(0)];
+  both["second"] = value[py::int_(1)];
+  return std::array{countKeyword(both, "first", 0), countKeyword(both, "second", 0)};
+}
+
+/// rebuild's keywords (pdesurf.rebuild's, None: not given) as the library's options, checked
+/// as the CLI checks them (checkRebuildOptions, the messages in the keywords' spelling).
+RebuildOptions rebuildOptions(const py::dict& keywords, const std::string& source) {
+  static constexpr const char* kKeywords[] = {
+      "kind",       "grid",        "layout",        "tube",        "iterations", "tolerance",
+      "smoothness", "fit_samples", "prevent_folds", "fold_weight", "fit_shape",  "frames",
+      "target_rms", "quads",       "crease_angle",  "resolution",  "samples",    "axis",
+      "count",      "range",       "near",          "track",       "modes",      "points",
+      "a",          "ends",        "exact",         "name"};
+  for (const auto& [key, value] : keywords) {
+    const std::string k = py::str(key);
+    if (std::find_if(std::begin(kKeywords), std::end(kKeywords),
+                     [&](const char* known) { return k == known; }) == std::end(kKeywords))
+      badArgument(k.c_str(), "not an option of rebuild");
+  }
+  RebuildOptions o;
+  const std::string kind = keyword<std::string>(keywords, "kind", "vertex-frames");
+  const auto parsedKind = parseRebuildKind(kind);
+  if (!parsedKind)
+    badArgument("kind", "'" + kind + "' is neither 'vertex-frames' nor 'cross-sections'");
+  o.kind = *parsedKind;
+  o.source = source;
+  o.name = keyword<std::string>(keywords, "name", "");
+  if (o.name.empty() && o.kind == RebuildKind::VertexFrames && source.starts_with("<"))
+    o.name = "mesh (vertex frames)";  // arrays: no file stem to name the model after
+  o.grid = pairKeyword(keywords, "grid", "(U, V)");
+  o.tube = pairKeyword(keywords, "tube", "(RINGS, SECTORS)");
+  if (keywords.contains("layout") && !keywords["layout"].is_none())
+    o.quadsPath = py::module_::import("os").attr("fspath")(keywords["layout"]).cast<std::string>();
+  o.frames = countKeyword(keywords, "frames", 0);
+  if (o.frames == 0 && keywords.contains("frames") && !keywords["frames"].is_none())
+    badArgument("frames", "must be 1 to 1000000");
+  if (keywords.contains("target_rms") && !keywords["target_rms"].is_none()) {
+    const py::object target = keywords["target_rms"];
+    o.targetRms = py::isinstance<py::str>(target)
+                      ? parseTargetRms(target.cast<std::string>(), RebuildOptionStyle::Python)
+                      : keyword<double>(keywords, "target_rms", 0.0);
+  }
+  if (keywords.contains("quads") && !keywords["quads"].is_none()) {
+    const std::string quads = keyword<std::string>(keywords, "quads", "pair");
+    o.quads = parseQuadConstruction(quads);
+    if (!o.quads) badArgument("quads", "'" + quads + "' is neither 'pair' nor 'split'");
+  }
+  if (keywords.contains("crease_angle") && !keywords["crease_angle"].is_none())
+    o.creaseAngle = keyword<double>(keywords, "crease_angle", 60.0);
+  o.fit.maxIterations = countKeyword(keywords, "iterations", o.fit.maxIterations);
+  o.fit.tolerance = keyword<double>(keywords, "tolerance", o.fit.tolerance);
+  o.fit.smoothness = keyword<double>(keywords, "smoothness", o.fit.smoothness);
+  o.fit.samplesPerSide = countKeyword(keywords, "fit_samples", o.fit.samplesPerSide);
+  o.fit.preventFolds = keyword<bool>(keywords, "prevent_folds", o.fit.preventFolds);
+  o.fit.conformalWeight = keyword<double>(keywords, "fold_weight", o.fit.conformalWeight);
+  o.fit.fitShape = keyword<bool>(keywords, "fit_shape", o.fit.fitShape);
+  o.resolution = countKeyword(keywords, "resolution", o.resolution);
+  const std::string axis = keyword<std::string>(keywords, "axis", "z");
+  const std::optional<Axis> parsedAxis = parseAxis(axis);
+  if (!parsedAxis) badArgument("axis", "'" + axis + "' is not x, y or z");
+  o.slice.axis = *parsedAxis;
+  o.slice.count = countKeyword(keywords, "count", o.slice.count);
+  if (keywords.contains("range") && !keywords["range"].is_none()) {
+    const auto r = floatRows(py::make_tuple(keywords["range"]), "range", 2);
+    o.slice.range = std::pair{r.at(0, 0), r.at(0, 1)};
+  }
+  if (keywords.contains("near") && !keywords["near"].is_none())
+    o.slice.near = points(floatRows(py::make_tuple(keywords["near"]), "near", 3))[0];
+  o.slice.track = keyword<bool>(keywords, "track", o.slice.track);
+  o.modes = countKeyword(keywords, "modes", o.modes);
+  o.points = countKeyword(keywords, "points", o.points);
+  o.a = keyword<double>(keywords, "a", o.a);
+  const std::string ends = keyword<std::string>(keywords, "ends", "natural");
+  const auto parsedEnds = parseChainEnds(ends);
+  if (!parsedEnds) badArgument("ends", "'" + ends + "' is neither 'natural' nor 'estimated'");
+  o.ends = *parsedEnds;
+  o.exact = keyword<bool>(keywords, "exact", o.exact);
+  if (keywords.contains("samples") && !keywords["samples"].is_none()) {
+    const long long samples = keywords["samples"].cast<long long>();
+    if (samples < 1) badArgument("samples", "must be at least 1");
+    o.samples = static_cast<std::size_t>(samples);
+  }
+  checkRebuildOptions(o, RebuildOptionStyle::Python);
+  return o;
 }
 
 py::dict measureDict(const FitMeasure& m) {
@@ -144,128 +264,59 @@ py::dict iterationDict(const FitIteration& it) {
                   arg("measure") = measureDict(it.measure));
 }
 
-/// The fit's options from the CLI's (checked as the CLI checks them).
-FitOptions fitOptions(std::uint32_t iterations, double tolerance, double smoothness,
-                      std::uint32_t samples, bool preventFolds, double foldWeight, bool fitShape) {
-  if (samples == 1 || samples == 2 || samples > 65)
-    badArgument("fit_samples", "must be 0 (automatic) or 3 to 65");
-  if (!(tolerance >= 0.0 && tolerance <= 1.0)) badArgument("tolerance", "must be in [0, 1]");
-  if (!(smoothness >= 0.0 && smoothness <= 1e6)) badArgument("smoothness", "must be in [0, 1e6]");
-  if (!(foldWeight >= 0.0 && foldWeight <= 1.0)) badArgument("fold_weight", "must be in [0, 1]");
-  FitOptions options;
-  options.maxIterations = iterations;
-  options.tolerance = tolerance;
-  options.smoothness = smoothness;
-  options.samplesPerSide = samples;
-  options.preventFolds = preventFolds;
-  options.conformalWeight = foldWeight;
-  options.fitShape = fitShape;
-  return options;
+/// The library's report as pdesurf.rebuild's dict (docs/python.md).
+py::dict reportDict(RebuildResult& result) {
+  const RebuildReport& r = result.report;
+  const MeshDistance& d = r.distance;
+  py::dict report;
+  report["kind"] = rebuildKindName(r.kind);
+  report["rms"] = py::make_tuple(d.aToB.rmsRelative, d.bToA.rmsRelative);
+  report["mean"] = py::make_tuple(d.aToB.meanRelative, d.bToA.meanRelative);
+  report["max"] = py::make_tuple(d.aToB.maxRelative, d.bToA.maxRelative);
+  report["distances"] = distanceDict(d);
+  using py::arg;
+  report["normals"] =
+      py::dict(arg("folded_area") = r.normals.foldedArea, arg("rms_degrees") = r.normals.rmsDegrees,
+               arg("reversed") = r.normals.reversed);
+  report["storage_bytes"] = r.storageBytes;
+  if (result.part) report["part"] = std::make_shared<Mesh>(std::move(*result.part));
+  if (r.kind == RebuildKind::CrossSections) {
+    report["sections"] = sectionList(result.sections);
+    report["part_storage_bytes"] = r.referenceStorageBytes;
+    return report;
+  }
+  py::list iterations;
+  for (const FitIteration& it : r.iterations) iterations.append(iterationDict(it));
+  report["iterations"] = iterations;
+  report["stop_reason"] = r.stopReason;
+  report["frames"] = r.frames;
+  if (r.automatic) report["mesh_storage_bytes"] = r.referenceStorageBytes;
+  if (r.search) {
+    report["target_reached"] = r.search->reached;
+    report["rms_reached"] = r.search->rmsReached;
+    report["trials"] = r.search->trials;
+  }
+  return report;
 }
 
-/// The automatic layout's options (`rebuild --frames --quads --crease-angle`).
-AutoLayoutOptions autoLayoutOptions(std::uint32_t frames, double creaseAngle,
-                                    const std::string& quads) {
-  if (frames < 1 || frames > 1000000) badArgument("frames", "must be 1 to 1000000");
-  if (!(creaseAngle >= 0.0 && creaseAngle <= 180.0))
-    badArgument("crease_angle", "must be in [0, 180] degrees");
-  if (quads != "pair" && quads != "split")
-    badArgument("quads", "'" + quads + "' is neither 'pair' nor 'split'");
-  AutoLayoutOptions options;
-  options.frames = frames;
-  options.creaseAngle = creaseAngle;
-  options.construction =
-      quads == "split" ? QuadConstruction::SplitTriangles : QuadConstruction::PairTriangles;
-  return options;
-}
-
-py::list iterationList(const std::vector<FitIteration>& iterations) {
-  py::list its;
-  for (const FitIteration& it : iterations) its.append(iterationDict(it));
-  return its;
-}
-
-py::tuple fit(const Model& start, const Mesh& mesh, std::uint32_t iterations, double tolerance,
-              double smoothness, std::uint32_t samples, bool preventFolds, double foldWeight,
-              bool fitShape, const py::object& progress) {
-  const VertexFrameModel& layout = framesOf(start, "start");
-  FitOptions options =
-      fitOptions(iterations, tolerance, smoothness, samples, preventFolds, foldWeight, fitShape);
+/// pdesurf.rebuild: the library's rebuild -> (model, report).
+py::tuple rebuildMesh(const Mesh& mesh, const std::string& source, const py::object& progress,
+                      const py::kwargs& keywords) {
+  const RebuildOptions options = rebuildOptions(keywords, source);
+  RebuildProgress calls;
   if (!progress.is_none())
-    options.onIteration = [&](const FitIteration& it) {
+    calls.onIteration = [&](const FitIteration& it) {
       py::gil_scoped_acquire gil;
       progress(iterationDict(it));
     };
-  FitResult result;
+  std::optional<RebuildResult> result;
   {
     py::gil_scoped_release release;
-    result = fitVertexFrames(layout, mesh, options);
+    result.emplace(rebuild(mesh, options, calls));
   }
-  return py::make_tuple(frameModel(std::move(result.model), start.source),
-                        iterationList(result.iterations), result.stopReason);
-}
-
-/// `rebuild --target-rms`: the smallest automatic layout whose fit reaches the target both
-/// ways -> (model, iterations, stop_reason, reached, trials).
-py::tuple searchTarget(const Mesh& mesh, double target, std::uint32_t frames, double creaseAngle,
-                       const std::string& quads, std::uint32_t iterations, double tolerance,
-                       double smoothness, std::uint32_t samples, bool preventFolds,
-                       double foldWeight, bool fitShape, std::uint32_t resolution,
-                       const std::string& name, const std::string& source) {
-  if (!(target > 0.0 && target < 1.0))
-    badArgument("target_rms", "must be a fraction of the diagonal in (0, 1), or '0.2%'");
-  TargetSearchOptions o;
-  o.targetRms = target;
-  o.layout = autoLayoutOptions(frames, creaseAngle, quads);
-  o.fit =
-      fitOptions(iterations, tolerance, smoothness, samples, preventFolds, foldWeight, fitShape);
-  o.resolution = resolution;
-  TargetSearch s;
-  {
-    py::gil_scoped_release release;
-    s = searchTargetRms(mesh, o, source);
-  }
-  s.best.fit.model.name = name;
-  return py::make_tuple(frameModel(std::move(s.best.fit.model), source),
-                        iterationList(s.best.fit.iterations), s.best.fit.stopReason, s.reached,
-                        s.trials);
-}
-
-py::tuple rebuildSections(const Mesh& mesh, const SliceOptions& slice, std::uint32_t modes,
-                          std::uint32_t points, double a, const std::string& ends, bool exact,
-                          const std::string& name, const std::string& source) {
-  if (ends != "natural" && ends != "estimated")
-    badArgument("ends", "'" + ends + "' is neither 'natural' nor 'estimated'");
-  if (!std::isfinite(a) || a == 0.0) badArgument("a", "must be finite and non-zero");
-  if (modes < 1 || modes > 256) badArgument("modes", "must be 1 to 256");
-  if (points < 2 * modes + 1)
-    badArgument("points", std::to_string(points) + " cannot determine " + std::to_string(modes) +
-                              " modes: give at least " + std::to_string(2 * modes + 1));
-  SectionRebuildOptions options;
-  options.slice = slice;
-  options.modes = modes;
-  options.exact = exact;
-  options.prep.points = points;
-  options.a = a;
-  options.ends = ends == "natural" ? ChainEnds::Natural : ChainEnds::Estimated;
-  options.name = name;
-  SectionRebuild rebuilt;
-  Mesh part, surface;
-  {
-    py::gil_scoped_release release;
-    rebuilt = rebuildFromSections(mesh, options);
-    const auto& s = rebuilt.sections;
-    rebuilt.model.description =
-        fmt::format("{} rebuilt by pdesurf rebuild from {} sections along {} in [{}, {}]", source,
-                    s.size(), axisName(slice.axis), s.front().coordinate, s.back().coordinate);
-    part = sectionedPart(mesh, slice.axis, s);
-    surface = tessellate(rebuilt.chain, chainMeasureOptions(rebuilt.chain.patches.size()));
-  }
-  const std::size_t modelBytes = storageBytes(rebuilt.model);
-  const Model model{std::make_shared<const AnyModel>(std::move(rebuilt.model)), source};
-  return py::make_tuple(model, std::make_shared<Mesh>(std::move(part)),
-                        std::make_shared<Mesh>(std::move(surface)), sectionList(rebuilt.sections),
-                        modelBytes);
+  py::dict report = reportDict(*result);
+  const Model model{std::make_shared<const AnyModel>(std::move(result->model)), source};
+  return py::make_tuple(model, report);
 }
 
 py::dict exportCad(const SolvedModel& solved, const std::string& path, const py::object& tolerance,
@@ -325,75 +376,13 @@ void bindTools(py::module_& m) {
       },
       py::arg("mesh"), py::arg("axis"), py::arg("count"), py::arg("range"), py::arg("near"),
       py::arg("track"), "Each plane's kept closed loop (pdesurf.slice wraps it).");
+  m.def("rebuild", &rebuildMesh, py::arg("mesh"), py::arg("source"), py::arg("progress"),
+        "The library's rebuild of a mesh with pdesurf.rebuild's keywords -> (model, report).\n"
+        "The GIL is released meanwhile (taken again for progress).");
   m.def(
-      "grid_layout",
-      [](const Mesh& disk, std::uint32_t u, std::uint32_t v, const std::string& source) {
-        if (u < 1 || v < 1 || u > 1000 || v > 1000)
-          badArgument("grid", "U and V must be 1 to 1000");
-        py::gil_scoped_release release;
-        return frameModel(gridLayout(disk, {u, v}, source), source);
-      },
-      py::arg("mesh"), py::arg("u"), py::arg("v"), py::arg("source"),
-      "A U x V grid of frames laid on a disk-like mesh. Raises LayoutError.");
-  m.def(
-      "quad_layout",
-      [](const std::string& path) {
-        py::gil_scoped_release release;
-        return frameModel(quadLayout(readPolygonMesh(path), path), path);
-      },
-      py::arg("path"), "One frame per quad of a quad mesh file. Raises LayoutError.");
-  m.def(
-      "tube_layout",
-      [](const Mesh& mesh, std::uint32_t rings, std::uint32_t sectors, const std::string& axis,
-         const py::object& range, const py::object& near, bool track, const std::string& source) {
-        if (rings < 1 || rings > 1000) badArgument("tube", "RINGS must be 1 to 1000");
-        if (sectors < 3 || sectors > 1000)
-          badArgument("tube", "SECTORS must be 3 to 1000 (two would join along both sides)");
-        const SliceOptions slice = sliceOptions(axis, 2 * rings + 1, range, near, track);
-        TubeLayout tube;
-        {
-          py::gil_scoped_release release;
-          tube = tubeLayout(mesh, {rings, sectors, slice}, source);
-        }
-        return py::make_tuple(frameModel(std::move(tube.model), source),
-                              std::make_shared<Mesh>(std::move(tube.part)));
-      },
-      py::arg("mesh"), py::arg("rings"), py::arg("sectors"), py::arg("axis"), py::arg("range"),
-      py::arg("near"), py::arg("track"), py::arg("source"),
-      "A tube of frames on a part of the mesh -> (layout, part). Raises LayoutError.");
-  m.def(
-      "auto_layout",
-      [](const Mesh& mesh, std::uint32_t frames, double creaseAngle, const std::string& quads,
-         const std::string& source) {
-        const AutoLayoutOptions options = autoLayoutOptions(frames, creaseAngle, quads);
-        py::gil_scoped_release release;
-        return frameModel(autoLayout(mesh, options, source).model, source);
-      },
-      py::arg("mesh"), py::arg("frames"), py::arg("crease_angle"), py::arg("quads"),
-      py::arg("source"),
-      "The automatic layout of about `frames` frames on any mesh. Raises LayoutError.");
-  m.def("search_target_rms", &searchTarget, py::arg("mesh"), py::arg("target"), py::arg("frames"),
-        py::arg("crease_angle"), py::arg("quads"), py::arg("iterations"), py::arg("tolerance"),
-        py::arg("smoothness"), py::arg("fit_samples"), py::arg("prevent_folds"),
-        py::arg("fold_weight"), py::arg("fit_shape"), py::arg("resolution"), py::arg("name"),
-        py::arg("source"),
-        "The smallest automatic layout whose fitted model reaches `target` both ways ->\n"
-        "(model, iterations, stop_reason, reached, trials). The GIL is released meanwhile.");
-  m.def("fit", &fit, py::arg("start"), py::arg("mesh"), py::arg("iterations") = 30,
-        py::arg("tolerance") = 1e-3, py::arg("smoothness") = 1e-5, py::arg("fit_samples") = 9,
-        py::arg("prevent_folds") = false, py::arg("fold_weight") = FitOptions{}.conformalWeight,
-        py::arg("fit_shape") = false, py::arg("progress") = py::none(),
-        "Fits a layout's vertices (and with fit_shape its forces, a1, a2) to a mesh ->\n"
-        "(model, iterations, stop_reason); progress(iteration) is called after each. The GIL\n"
-        "is released meanwhile (taken again for progress).");
-  m.def(
-      "with_name",
-      [](const Model& model, const std::string& name) {
-        VertexFrameModel frames = framesOf(model, "model");
-        frames.name = name;
-        return frameModel(std::move(frames), model.source);
-      },
-      py::arg("model"), py::arg("name"), "A vertex-frame model with another name.");
+      "check_rebuild_options",
+      [](const py::kwargs& keywords) { rebuildOptions(keywords, "<options>"); },
+      "Checks pdesurf.rebuild's keywords before any work; raises ValueError naming one.");
   m.def(
       "storage_bytes",
       [](const py::object& value) -> std::size_t {
@@ -406,20 +395,6 @@ void bindTools(py::module_& m) {
       py::arg("model"),
       "Storage under the seed's Table 1 convention (six significant digits as text) of a\n"
       "vertex-frames or cross-sections model, or a mesh.");
-  m.def(
-      "rebuild_sections",
-      [](const Mesh& mesh, const std::string& axis, std::uint32_t count, const py::object& range,
-         const py::object& near, bool track, std::uint32_t modes, std::uint32_t points, double a,
-         const std::string& ends, bool exact, const std::string& name, const std::string& source) {
-        if (count < 2) badArgument("count", "a chain needs at least 2 sections");
-        return rebuildSections(mesh, sliceOptions(axis, count, range, near, track), modes, points,
-                               a, ends, exact, name, source);
-      },
-      py::arg("mesh"), py::arg("axis"), py::arg("count"), py::arg("range"), py::arg("near"),
-      py::arg("track"), py::arg("modes"), py::arg("points"), py::arg("a"), py::arg("ends"),
-      py::arg("exact"), py::arg("name"), py::arg("source"),
-      "The cross-section rebuild -> (model, part, measured surface mesh, sections,\n"
-      "storage bytes).");
   m.def("export_cad", &exportCad, py::arg("surface"), py::arg("path"),
         py::arg("tolerance") = py::none(), py::arg("max_spans") = 512,
         "Writes STEP or IGES (by the extension) -> the export report (pdesurf.export wraps it).");

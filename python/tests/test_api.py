@@ -211,9 +211,18 @@ def test_rebuild_vertex_frames_is_the_cli_rebuild(layout, cgal_mesh, tmp_path):
                 f"({percent(w['max_relative'])})")
         assert line in printed.splitlines()
     assert report["rms"] == (d["model_to_mesh"]["rms_relative"], d["mesh_to_model"]["rms_relative"])
+    assert normals_line(report["normals"]) in printed.splitlines()
     assert f"storage        {report['storage_bytes']} bytes" in printed
     assert f"{out}: {report['stop_reason']}" in printed
+    assert f"{report['frames']} frames" in printed and report["frames"] == len(model.frames)
     assert ("part" in report) == (layout == "tube")
+
+
+def normals_line(normals):
+    """The line `pdesurf rebuild` prints for the model's normals against the mesh's."""
+    reversed_ = " (the model faces the other way, taken as it faces)" if normals["reversed"] else ""
+    return (f"normals        folded {100 * normals['folded_area']:.3g}% of the model's area, "
+            f"RMS deviation {normals['rms_degrees']:.3g}°{reversed_}")
 
 
 def test_rebuild_fold_weight_is_the_cli_option(cgal_mesh, tmp_path):
@@ -245,8 +254,10 @@ def test_rebuild_automatic_layout_is_the_cli_rebuild(choice, cgal_mesh, tmp_path
     assert f"storage        {report['storage_bytes']} bytes" in printed
     assert f"mesh storage   {report['mesh_storage_bytes']} bytes" in printed
     assert f"{out}: {report['stop_reason']}" in printed
+    assert normals_line(report["normals"]) in printed.splitlines()
     if choice[0] == "--target-rms":
-        assert report["target_reached"] and "reached both ways" in printed
+        assert report["target_reached"] and report["rms_reached"]
+        assert "reached both ways" in printed
         assert max(report["rms"]) <= 0.005
         assert f"({report['trials']} layout" in printed
 
@@ -277,6 +288,12 @@ def test_rebuild_cross_sections_is_the_cli_rebuild(cgal_mesh, tmp_path):
                              printed["part_to_model"]["rms_relative"])
     assert report["part"].triangle_count == printed["part_triangles"]
     assert len(report["sections"]) == printed["sections"]
+    # Every number of the CLI's report is the package's (JSON doubles round-trip exactly).
+    assert report["normals"] == printed["normals"]
+    assert report["distances"]["diagonal"] == printed["diagonal"]
+    for way, cli_way in (("model_to_mesh", "model_to_part"), ("mesh_to_model", "part_to_model")):
+        for key, value in printed[cli_way].items():
+            assert report["distances"][way][key] == value, (way, key)
 
 
 def test_polygon_peer_reaches_its_target_with_the_fewest_edges(cgal_mesh):

@@ -235,7 +235,7 @@ def test_a_scheduler_with_a_worker_killed_gives_the_local_results(local_run, col
 def test_bad_options_exit_2_with_a_clear_error(collection, tmp_path, capsys):
     from pdesurf import batch as pdesurf_batch
     for args, words in ((["--workers", "0"], "--workers: must be at least 1"),
-                        (["--grid", "4", "4", "--frames", "10"], "not with grid"),
+                        (["--grid", "4", "4", "--frames", "10"], "not with layout, grid or tube"),
                         (["--timeout", "0"], "--timeout"),
                         (["--target-rms", "2%", "--frames", "9"], "give one of them"),
                         (["--as", "spheres"], "invalid choice")):
