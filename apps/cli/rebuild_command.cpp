@@ -32,13 +32,13 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-/// `compute()`, with the std::invalid_argument a mesh it cannot use throws turned into
+/// `compute()`, with the InvalidArgument a mesh it cannot use throws turned into
 /// MeshIoError "MESH: WHAT<reason>" (exit 1, naming the file).
 template <class Compute>
 auto namingMesh(const std::string& meshPath, std::string_view what, Compute&& compute) {
   try {
     return compute();
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     throw MeshIoError(fmt::format("{}: {}{}", meshPath, what, e.what()));
   }
 }

@@ -19,8 +19,8 @@ import pathlib as _pathlib
 import numpy as _np
 
 from . import _core
-from ._errors import (CadError, Error, FileError, LayoutError, MeshIOError, ModelError,
-                      SectionError, SliceError, ToleranceError)
+from ._errors import (CadError, Error, FileError, InvalidArgumentError, LayoutError, LoftError,
+                      MeshIOError, ModelError, SectionError, SliceError, ToleranceError)
 from ._core import Mesh, Model, Session, Surface, get_threads, read_mesh, set_threads
 
 __all__ = [
@@ -28,7 +28,7 @@ __all__ = [
     "polygon_peer",
     "set_threads", "get_threads", "release_mesh_memory", "Model", "Surface", "Mesh",
     "Session", "Error", "ModelError", "FileError", "MeshIOError", "LayoutError", "SliceError",
-    "SectionError", "CadError", "ToleranceError",
+    "InvalidArgumentError", "SectionError", "CadError", "ToleranceError", "LoftError",
 ]
 
 release_mesh_memory = _core.release_mesh_memory
