@@ -56,8 +56,8 @@ TEST(Error, AMalformedModelNamesItsFileAndJsonPath) {
   EXPECT_TRUE(e->ofKind);
   EXPECT_EQ(e->file, "m.json");
   EXPECT_EQ(e->jsonPath, "$.vertices");
-  EXPECT_EQ(e->message, "expected an array, found number");
-  EXPECT_EQ(e->what, "m.json: $.vertices: expected an array, found number");
+  EXPECT_EQ(e->message, "expected an array, found a number");
+  EXPECT_EQ(e->what, "m.json: $.vertices: expected an array, found a number");
 }
 
 TEST(Error, BadArgumentsOfTheEnginesAreInvalidArguments) {

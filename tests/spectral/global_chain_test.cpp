@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral.hpp"
 #include "spectral/basis.hpp"
 

@@ -11,6 +11,7 @@
 #include <functional>
 #include <vector>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral.hpp"
 #include "support/mesh_checks.hpp"
 

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <random>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "support/models.hpp"
 

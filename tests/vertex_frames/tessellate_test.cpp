@@ -5,6 +5,7 @@
 #include <random>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/models.hpp"
