@@ -153,7 +153,7 @@ BSplineGrid fitBSpline(std::span<const ParamSample> samples, std::uint32_t nu, s
       Eigen::SparseMatrix<double>(design.transpose() * design) + smooth;
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
   if (solver.info() != Eigen::Success)
-    throw std::invalid_argument(fmt::format(
+    throw InvalidArgument(fmt::format(
         "the least-squares system of a {} × {} B-spline net is singular: too few samples", nu, nv));
   const Eigen::MatrixX3d x = solver.solve(rhs);
   out.control.resize(unknowns);

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/vertex_frames.hpp"
@@ -39,7 +40,7 @@ struct PolygonPeer {
 
 /// The truth simplified to the fewest edges whose RMS is no larger than `targetRms`: a
 /// bisection on the stop predicate's edge count (the edges kept), each trial simplifying the
-/// truth afresh. Throws std::invalid_argument when the truth is not a manifold, oriented
+/// truth afresh. Throws InvalidArgument when the truth is not a manifold, oriented
 /// triangle mesh (naming the triangle).
 PolygonPeer simplifiedPeer(const Mesh& truth, double targetRms, const DistanceOptions& distance);
 

@@ -31,7 +31,7 @@ SurfaceMesh toSurfaceMesh(const Mesh& mesh) {
     const std::uint32_t* c = &mesh.indices[3 * t];
     if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;  // no triangle at all
     if (sm.add_face(v[c[0]], v[c[1]], v[c[2]]) == SurfaceMesh::null_face())
-      throw std::invalid_argument(fmt::format(
+      throw InvalidArgument(fmt::format(
           "triangle {} cannot join the others: simplification needs a manifold, consistently "
           "oriented mesh",
           t));

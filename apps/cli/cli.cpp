@@ -15,8 +15,8 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "export_command.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh_io.hpp"
-#include "pdesurf/model_error.hpp"
 #include "rebuild_command.hpp"
 
 namespace pdesurf::cli {
@@ -74,10 +74,7 @@ int runCli(int argc, char** argv) {
   } catch (const UsageError& e) {
     fmt::print(stderr, "pdesurf: {}\n", e.what());
     return kExitUsage;
-  } catch (const MeshIoError& e) {
-    fmt::print(stderr, "pdesurf: {}\n", e.what());
-    return kExitInput;
-  } catch (const ModelError& e) {
+  } catch (const Error& e) {  // bad input: a model, a mesh, an argument the library refuses
     fmt::print(stderr, "pdesurf: {}\n", e.what());
     return kExitInput;
   } catch (const std::exception& e) {

@@ -83,7 +83,7 @@ inline std::string count(std::size_t n, const std::string& noun) { return countT
 /// Reads a mesh with at least one triangle (MeshIoError naming the file otherwise).
 inline Mesh readTriangles(const std::string& path) {
   Mesh mesh = readMesh(path);
-  if (mesh.triangleCount() == 0) throw MeshIoError(path + ": the mesh has no triangles");
+  if (mesh.triangleCount() == 0) throw MeshIoError(path, "the mesh has no triangles");
   return mesh;
 }
 
@@ -101,7 +101,7 @@ SliceOptions sliceOptionsFrom(const std::string& axis, std::uint32_t planes,
     slice.range = {range[0], range[1]};
     try {
       slicePlanes(slice, 0.0, 1.0);  // the range's own checks, before any work
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidArgument& e) {
       throw UsageError(fmt::format("--range: {}", e.what()));
     }
   }

@@ -75,7 +75,7 @@ struct CompareCommand {
     try {
       d = meshDistance(built.mesh, mesh, options);
       normals = normalDeviation(built.mesh, mesh);
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidArgument& e) {
       throw MeshIoError(fmt::format("{} vs {}: {}", modelPath, meshPath, e.what()));
     }
     const double distanceMs = msSince(t0);

@@ -20,15 +20,15 @@ namespace pdesurf::cli {
 
 namespace {
 
-/// rebuild(), with the errors of a mesh it cannot use (`Error`: std::invalid_argument for
+/// rebuild(), with the errors of a mesh it cannot use (`Caught`: InvalidArgument for
 /// vertex frames, any for cross sections) turned into MeshIoError "MESH: reason" (exit 1,
 /// naming the file).
-template <class Error>
+template <class Caught>
 RebuildResult namingMesh(const Mesh& mesh, const RebuildOptions& options,
                          const RebuildProgress& progress = {}) {
   try {
     return rebuild(mesh, options, progress);
-  } catch (const Error& e) {
+  } catch (const Caught& e) {
     throw MeshIoError(fmt::format("{}: {}", options.source, e.what()));
   }
 }
@@ -299,7 +299,7 @@ int RebuildCommand::runVertexFrames(const RebuildOptions& o) const {
       printTrial(o, requested, f);
     };
   }
-  const RebuildResult rebuilt = namingMesh<std::invalid_argument>(mesh, o, progress);
+  const RebuildResult rebuilt = namingMesh<InvalidArgument>(mesh, o, progress);
   const RebuildReport& report = rebuilt.report;
   if (report.search && !quiet) printSearch(o, report);
   // The tube's part: what the model was fitted to and measured against.

@@ -64,7 +64,7 @@ struct SliceCommand {
     try {
       sections = sliceMesh(mesh, options);
     } catch (const MeshSliceError& e) {
-      throw MeshIoError(fmt::format("{}: {}", meshPath, e.what()));
+      throw MeshIoError(meshPath, e.what());
     }
     Json planes = Json::array();
     for (const MeshSection& section : sections) {

@@ -26,7 +26,7 @@ SolveOptions SolveArgs::options(const AnyModel& model) const {
   const SolveOptions options{solver == "local" ? Solver::Local : Solver::Global, seedFrame};
   try {
     checkSolveOptions(model, options);
-  } catch (const std::out_of_range& e) {
+  } catch (const InvalidArgument& e) {
     throw UsageError(fmt::format("--seed-frame {}: {}", seedFrame, e.what()));
   }
   return options;

@@ -35,7 +35,7 @@ std::string fitReport(const std::string& path, const std::vector<std::uint32_t>&
       FourierFit fit;
       try {
         fit = fitFourier(*sampled, n, options);
-      } catch (const std::invalid_argument& e) {
+      } catch (const InvalidArgument& e) {
         throw ModelError(path, fmt::format("$.curves[{}]", c), e.what());
       }
       fits.push_back({{"terms", n}, {"max_error", fit.maxError}, {"mean_error", fit.meanError}});

@@ -23,7 +23,7 @@ constexpr std::uint32_t kSpineHandles = 9;
 
 std::string readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the file", path.string()));
+  if (!in) throw FileError(path.string(), "cannot open the file");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

@@ -21,7 +21,9 @@ Handler Studio::guarded(Handler handler) const {
       handler(req, res);
     } catch (const HttpError& e) {
       sendJson(res, {{"error", e.message}}, e.status);
-    } catch (const ModelError& e) {
+    } catch (const FileError& e) {  // the server's own files (autosaves, saves)
+      sendJson(res, {{"error", e.what()}}, 500);
+    } catch (const Error& e) {  // what the request asked is bad input to the library
       sendJson(res, {{"error", e.what()}}, 400);
     } catch (const std::exception& e) {
       sendJson(res, {{"error", e.what()}}, 500);

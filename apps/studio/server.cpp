@@ -239,7 +239,7 @@ int runStudio(const std::string& modelPath, const StudioOptions& options) {
   try {
     server.emplace(modelPath, options);
     server->start();
-  } catch (const ModelError& e) {
+  } catch (const Error& e) {
     std::fprintf(stderr, "pdesurf: %s\n", e.what());
     return 1;
   } catch (const StudioError& e) {

@@ -2,17 +2,12 @@
 // autosaves, slices, STEP and IGES).
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
-namespace pdesurf {
+#include "pdesurf/error.hpp"
 
-/// A file could not be written; what() names the file and the reason.
-class FileError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace pdesurf {
 
 /// Writes `data` to `path` whole or not at all: the bytes go to a hidden temporary file in
 /// the same folder (".NAME.tmp-XXXXXX"), are synced to disk and renamed over `path`, so a

@@ -81,7 +81,7 @@ struct CubicBasis {
 /// polynomials extend.
 class BSplineSurface {
  public:
-  /// Throws std::invalid_argument for nu or nv < 3, a point count other than
+  /// Throws InvalidArgument for nu or nv < 3, a point count other than
   /// (nu+1)(nv+1), or a non-finite point (naming its (i, j)).
   BSplineSurface(ControlNet net, KnotType uKnots, KnotType vKnots);
 
@@ -130,7 +130,7 @@ struct BSplinePdeOptions {
 /// inner points P_{i,j} (2 ≤ i ≤ nu-1, 2 ≤ j ≤ nv-1; their values in `net` are ignored)
 /// make ∂⁶x/∂u³∂v³ = 0 on all (nu-2)(nv-2) spans: one mask equation per span, as many as
 /// unknowns, solved as X = M⁻¹ Y N⁻ᵀ with banded LU of M and N, in O(nu nv) (Y has rank ≤ 6).
-/// Throws std::invalid_argument as BSplineSurface does, the inner points exempt from the
+/// Throws InvalidArgument as BSplineSurface does, the inner points exempt from the
 /// finiteness check.
 BSplineSurface solveBSplinePde(const ControlNet& net, const BSplinePdeOptions& options = {});
 
@@ -138,7 +138,7 @@ BSplineSurface solveBSplinePde(const ControlNet& net, const BSplinePdeOptions& o
 /// const members keep no scratch state: one solver may serve several threads.
 class BSplinePdeSolver {
  public:
-  /// Throws std::invalid_argument for nu or nv < 3.
+  /// Throws InvalidArgument for nu or nv < 3.
   BSplinePdeSolver(std::uint32_t nu, std::uint32_t nv, const BSplinePdeOptions& options = {});
   ~BSplinePdeSolver();
   BSplinePdeSolver(BSplinePdeSolver&&) noexcept;
@@ -176,7 +176,7 @@ Eigen::MatrixXd pdeSystemMatrix(KnotType type, std::uint32_t n);
 struct BSplineCurve {
   std::vector<Vec3> points;
   KnotType knots = KnotType::Clamped;
-  /// The k-th derivative (k ≤ 3) at t. Throws std::invalid_argument for fewer than 4 points.
+  /// The k-th derivative (k ≤ 3) at t. Throws InvalidArgument for fewer than 4 points.
   Vec3 evaluate(double t, int k = 0) const;
 };
 
@@ -218,7 +218,7 @@ constexpr std::uint32_t kBoundaryResampleFactor = 8;
 /// (λ/3) D_j with D the least-squares fit of T (clamped knots only: x_u(0,v) = (3/λ) Σ (P_{1,j}
 /// - P_{0,j}) N_j(v)). The boundary curves win where they own a point (P_{1,0}, P_{0,1},
 /// P_{1,nv}, P_{nu,1}); P_{1,1} is the mean of what the row and the column give. Throws
-/// std::invalid_argument naming the side for corners that disagree, wrong counts, non-finite
+/// InvalidArgument naming the side for corners that disagree, wrong counts, non-finite
 /// values, samples too few or badly parameterized, or a tangent on uniform knots.
 ControlNet boundaryNet(const BSplineBoundary& boundary);
 
@@ -247,7 +247,7 @@ struct C1Blend {
 /// piece solves the PDE on every span, the seams are C1 (equal spans: P_{n-1} + P_{n+1} =
 /// 2 P_n across each), the boundary is the curves (refitted on 2(n-2) uniform spans and split
 /// at 1/2 by knot insertion), and the remaining freedom minimises the global net's discrete
-/// thin-plate energy. Dense: O(n⁶). Throws std::invalid_argument naming the curve for fewer
+/// thin-plate energy. Dense: O(n⁶). Throws InvalidArgument naming the curve for fewer
 /// than 4 points, knots other than clamped, a non-finite point, corners that do not meet; and
 /// for n < 3.
 C1Blend blendFourCurves(const BSplineCurve& uMin, const BSplineCurve& uMax,
@@ -258,7 +258,7 @@ C1Blend blendFourCurves(const BSplineCurve& uMin, const BSplineCurve& uMax,
 /// curve is refitted on 2(n-2) spans, made C1 where it closes (the two end legs replaced by
 /// their mean) and split at 1/2. The seams V = 1 and V = 0 ≡ 2 are C1; the other points follow
 /// the same rule as blendFourCurves (PDE on every span, least thin-plate energy, periodic in
-/// V). Throws std::invalid_argument as blendFourCurves does, and for a curve that is not closed.
+/// V). Throws InvalidArgument as blendFourCurves does, and for a curve that is not closed.
 C1Blend blendClosedCurves(const BSplineCurve& start, const BSplineCurve& end, std::uint32_t n);
 
 // ---------------------------------------------------------------------------------------

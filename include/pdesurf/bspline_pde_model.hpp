@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "pdesurf/bspline_pde.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh.hpp"
-#include "pdesurf/model_error.hpp"
 
 namespace pdesurf {
 

@@ -4,19 +4,14 @@
 #pragma once
 
 #include <cstddef>
-#include <stdexcept>
 #include <string>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/nurbs.hpp"
 
 namespace pdesurf {
 
 enum class CadFormat { Step, Iges };
-
-/// A path pdesurf cannot write (its extension) or a file Open CASCADE failed to write.
-struct CadError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 /// The format an output path's extension names: .step or .stp, .igs or .iges (any case).
 /// Throws CadError naming the extensions it knows.

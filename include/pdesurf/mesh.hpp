@@ -44,6 +44,7 @@ struct MeshAllocator {
   template <class U>
   MeshAllocator(const MeshAllocator<U>&) noexcept {}
   T* allocate(std::size_t n) {
+    // Not a pdesurf::Error: the allocator's contract (std::allocator throws this too).
     if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
     return static_cast<T*>(detail::allocateMeshBlock(n * sizeof(T)));
   }

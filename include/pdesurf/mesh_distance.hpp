@@ -54,7 +54,7 @@ struct MeshDistance {
 
 /// Samples A and measures to B, and the other way round. Triangles with collinear corners
 /// stand for no area: they are neither sampled nor searched (their edges are their
-/// neighbours'). Throws std::invalid_argument when a mesh has no triangle with area.
+/// neighbours'). Throws InvalidArgument when a mesh has no triangle with area.
 MeshDistance meshDistance(const Mesh& a, const Mesh& b, const DistanceOptions& options = {});
 
 /// How the normals of a mesh A (a model's tessellation, or a simplified polygon) agree with
@@ -73,7 +73,7 @@ struct NormalDeviation {
 };
 
 /// Measures A's normals against B's (NormalDeviation); `threads` as in DistanceOptions.
-/// Throws std::invalid_argument when a mesh has no triangle with area.
+/// Throws InvalidArgument when a mesh has no triangle with area.
 NormalDeviation normalDeviation(const Mesh& a, const Mesh& b, unsigned threads = 0);
 
 }  // namespace pdesurf

@@ -4,15 +4,10 @@
 #include <string>
 
 #include "pdesurf/atomic_file.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh.hpp"
 
 namespace pdesurf {
-
-/// A mesh file could not be read or written; what() names the file and the problem.
-class MeshIoError : public FileError {
- public:
-  using FileError::FileError;
-};
 
 /// The mesh formats pdesurf writes and reads.
 enum class MeshFormat { Obj, Ply, Stl, Glb, Off };

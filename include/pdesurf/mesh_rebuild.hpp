@@ -88,10 +88,10 @@ struct RebuildOptions {
 
 /// An option that cannot be used (a value out of its range, options that exclude each other);
 /// what() names the option as the front end spells it (RebuildOptionStyle).
-class RebuildOptionError : public std::invalid_argument {
+class RebuildOptionError : public InvalidArgument {
  public:
   RebuildOptionError(std::string option, const std::string& message)
-      : std::invalid_argument(message), option_(std::move(option)) {}
+      : InvalidArgument(message), option_(std::move(option)) {}
   /// The option's key: its Python keyword ("target_rms", "grid", ...).
   const std::string& option() const { return option_; }
 
@@ -191,8 +191,8 @@ struct RebuildProgress {
 
 /// Rebuilds `mesh` as `options` say (checked first: RebuildOptionError). Throws LayoutError
 /// for a mesh or quad file that cannot give the layout, MeshSliceError and
-/// std::invalid_argument for sections that cannot be used (naming the plane), and
-/// std::invalid_argument for a mesh the fit or the measure cannot use ("the rebuilt part:
+/// InvalidArgument for sections that cannot be used (naming the plane), and
+/// InvalidArgument for a mesh the fit or the measure cannot use ("the rebuilt part:
 /// ..." where the sections' part is empty).
 RebuildResult rebuild(const Mesh& mesh, const RebuildOptions& options,
                       const RebuildProgress& progress = {});

@@ -4,13 +4,13 @@
 
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh.hpp"
 
 namespace pdesurf {
@@ -25,13 +25,6 @@ const char* axisName(Axis axis);
 
 /// The axis named "x", "y" or "z" (lower or upper case); nullopt for anything else.
 std::optional<Axis> parseAxis(const std::string& name);
-
-/// A mesh cannot be sliced as asked: a plane misses it, or cuts it only in open chains.
-/// what() names the plane (index and coordinate) and the mesh's extent along the axis.
-class MeshSliceError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct SliceOptions {
   Axis axis = Axis::Z;
@@ -71,7 +64,7 @@ struct MeshSection {
 };
 
 /// The planes' coordinates for `options` on a mesh whose extent along the axis is [lo, hi]
-/// (the rule documented at SliceOptions::range). Throws std::invalid_argument for a count
+/// (the rule documented at SliceOptions::range). Throws InvalidArgument for a count
 /// of 0 or a range that is not finite or has a > b (a == b with more than one plane).
 std::vector<double> slicePlanes(const SliceOptions& options, double lo, double hi);
 
@@ -89,7 +82,7 @@ std::vector<double> slicePlanes(const SliceOptions& options, double lo, double h
 ///
 /// Throws MeshSliceError when a plane meets no triangle ("plane 3 at z=2.5 does not meet
 /// the mesh (extent z in [0, 2])") or has no closed loop (only open chains); and
-/// std::invalid_argument for bad options (see slicePlanes; a `near` point that is not
+/// InvalidArgument for bad options (see slicePlanes; a `near` point that is not
 /// finite).
 std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options);
 

@@ -43,7 +43,7 @@ class SurfaceMethod {
   virtual std::shared_ptr<const SolvedSurface> solve(
       const AnyModel& model, const std::string& source, const SolveOptions& options,
       const std::shared_ptr<const FrameTopology>& topology) const = 0;
-  /// Throws std::out_of_range when `options` do not fit the model (the default: they fit).
+  /// Throws InvalidArgument when `options` do not fit the model (the default: they fit).
   virtual void checkSolveOptions(const AnyModel& model, const SolveOptions& options) const;
 
   /// The model moved, turned or scaled whole (transform.hpp: what re-solving gives).
@@ -62,7 +62,7 @@ class SurfaceMethod {
   virtual bool editsParts() const { return false; }
 };
 
-/// Adds a method to the registry, after the built-in ones. Throws std::invalid_argument when
+/// Adds a method to the registry, after the built-in ones. Throws InvalidArgument when
 /// its type name or model type is already registered. `method` must outlive its use.
 void registerMethod(const SurfaceMethod& method);
 /// The method whose model files have this "type", else nullptr.

@@ -31,7 +31,7 @@ namespace pdesurf {
 class SurfaceMethod;
 
 /// The description registered for models of C++ type `type` (method.hpp: the built-in
-/// methods and those given to registerMethod). Throws std::invalid_argument when none is.
+/// methods and those given to registerMethod). Throws InvalidArgument when none is.
 const SurfaceMethod& methodForModelType(const std::type_info& type);
 
 /// Any model as a file describes it (docs/model-format.md): one method's own model value
@@ -212,7 +212,7 @@ SolvedModel solveModel(std::shared_ptr<const AnyModel> model, const std::string&
                        std::shared_ptr<const FrameTopology> topology = nullptr);
 SolvedModel solveModel(AnyModel model, const std::string& source, const SolveOptions& options = {});
 
-/// Throws std::out_of_range when `options` do not fit `model` (vertex frames: a seed frame
+/// Throws InvalidArgument when `options` do not fit `model` (vertex frames: a seed frame
 /// the model does not have), with what is wrong: "out of range, the model has 3 frames
 /// (indices 0 to 2)".
 void checkSolveOptions(const AnyModel& model, const SolveOptions& options);

@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/model.hpp"
-#include "pdesurf/model_error.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {

@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <functional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "pdesurf/bspline_pde.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral_model.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
@@ -165,11 +165,6 @@ struct NurbsModel {
   double maxDeviation() const;
   std::size_t exactCount() const;
   std::size_t overToleranceCount() const;  ///< faces kept with withinTolerance false
-};
-
-/// An approximation that did not reach the tolerance within ApproximationOptions::maxSpans.
-struct NurbsToleranceError : std::runtime_error {
-  using std::runtime_error::runtime_error;
 };
 
 /// Vertex-frame patches: force-free ones exactly (bezierPatch), the others approximated.

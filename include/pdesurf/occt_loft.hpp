@@ -4,18 +4,12 @@
 #pragma once
 
 #include <span>
-#include <stdexcept>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh.hpp"
 #include "pdesurf/spectral.hpp"
 
 namespace pdesurf {
-
-/// Open CASCADE could not loft the sections; what() carries its message.
-class LoftError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// A smooth (not ruled) loft through the sections, each a periodic B-spline interpolating
 /// its points in their order (prepared sections: aligned, equally spaced), triangulated by

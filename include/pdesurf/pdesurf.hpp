@@ -5,9 +5,9 @@
 #pragma once
 
 // Geometry and meshes.
+#include "pdesurf/error.hpp"
 #include "pdesurf/geometry.hpp"
 #include "pdesurf/mesh.hpp"
-#include "pdesurf/model_error.hpp"
 
 // The engines, one per method, and measurements of their surfaces.
 #include "pdesurf/analysis.hpp"

@@ -5,21 +5,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh.hpp"
 #include "pdesurf/vertex_frames.hpp"
 
 namespace pdesurf {
-
-/// A mesh cannot serve as a layout (a face that is no quad, an edge of three faces, a
-/// mesh that is no disk); what() names the file, the face or the edge, and the problem.
-class LayoutError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // ---------------------------------------------------------------------------------------
 // Layouts: a vertex-frame model whose vertices are a first guess, ready to be fitted.
@@ -146,7 +139,7 @@ struct FitResult {
 /// with their closest points on the surface, solves the linear least-squares problem in
 /// the vertex positions (with the strips' cubic coefficients as the global solver sets
 /// them), and takes the step, halved until the measured RMS does not increase. With
-/// FitOptions::fitShape, then the forces and a1, a2 as well. Throws std::invalid_argument
+/// FitOptions::fitShape, then the forces and a1, a2 as well. Throws InvalidArgument
 /// for a start model fitShape cannot take (forces already, a1 or a2 out of range).
 FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
                           const FitOptions& options = {});

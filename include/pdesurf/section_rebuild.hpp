@@ -44,10 +44,10 @@ struct SectionRebuild {
 };
 
 /// Throws MeshSliceError (a plane misses the mesh or cuts no closed loop) and
-/// std::invalid_argument naming the plane ("plane 3 at y=0.25: ...") for several loops
+/// InvalidArgument naming the plane ("plane 3 at y=0.25: ...") for several loops
 /// without near/track, a loop that is not simple, or (unless `exact`) one with fewer points
 /// than M modes need (2M + 1: more modes would fit the straight edges between its points,
-/// not the surface); std::invalid_argument for bad options.
+/// not the surface); InvalidArgument for bad options.
 SectionRebuild rebuildFromSections(const Mesh& mesh, const SectionRebuildOptions& options);
 
 /// Rows per patch and columns around v at which a rebuilt chain is tessellated to measure it

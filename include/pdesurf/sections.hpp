@@ -7,26 +7,13 @@
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral.hpp"
 
 namespace pdesurf {
-
-/// A section cannot be used: what() names it ("section 3: ...") and the reason.
-class SectionError : public std::invalid_argument {
- public:
-  SectionError(std::uint32_t section, const std::string& reason);
-  std::uint32_t section() const { return section_; }
-  /// The reason alone, without "section i: ".
-  const std::string& reason() const { return reason_; }
-
- private:
-  std::uint32_t section_;
-  std::string reason_;
-};
 
 struct SectionPrepOptions {
   /// Points per prepared section, evenly spaced by arc length (≥ 8). A Fourier fit of M
@@ -49,7 +36,7 @@ struct SectionPrepOptions {
 /// along its arc length) to the start that minimises Σ_j |q_j − c_q − (p_j − c_p)|² /
 /// (r_p r_q) against its predecessor p (centroids c, RMS radii r): the least twist.
 /// A point that repeats its predecessor, and a last point equal to the first, are dropped.
-/// Throws SectionError for a bad section, std::invalid_argument for bad options.
+/// Throws SectionError for a bad section, InvalidArgument for bad options.
 std::vector<SampledCurve> prepareSections(std::span<const std::vector<Vec3>> loops,
                                           const SectionPrepOptions& options = {});
 

@@ -78,7 +78,7 @@ struct FourierFit {
 };
 
 /// The v values of a sampled curve (given, uniform or chord length), validated: throws
-/// std::invalid_argument naming the problem (too few points, open curve, v out of range or
+/// InvalidArgument naming the problem (too few points, open curve, v out of range or
 /// not increasing, chord length of a curve whose points all coincide).
 std::vector<double> curveParameters(const SampledCurve& curve, VParameterization parameterization);
 
@@ -103,7 +103,7 @@ struct SpectralOperator {
   static SpectralOperator ugail(std::uint32_t n, std::optional<double> a = std::nullopt);
   static SpectralOperator fu(double a);
   std::uint32_t order() const { return kind == OperatorKind::Fu ? 6u : 2u * power; }
-  /// Throws std::invalid_argument for N < 1, a = 0 (Fu), a not finite or a ≤ 0 (Ugail).
+  /// Throws InvalidArgument for N < 1, a = 0 (Fu), a not finite or a ≤ 0 (Ugail).
   void validate() const;
 };
 
@@ -210,7 +210,7 @@ class SpectralPatch {
 
 /// Solves one patch: resolves u positions, fits sampled curves with M modes, solves each
 /// mode's condition system by QR (one factorisation per mode) and builds the remainder.
-/// Throws std::invalid_argument naming what is wrong (operator, condition count, duplicate
+/// Throws InvalidArgument naming what is wrong (operator, condition count, duplicate
 /// u, too few points for M, open or degenerate curves, singular conditions).
 SpectralPatch solveSpectral(const SpectralOperator& op,
                             std::span<const SpectralCondition> conditions,
@@ -333,7 +333,7 @@ struct CrossSectionChain {
 const char* chainMethodName(ChainMethod method);
 
 /// Builds the chain from K ordered closed curves (global: K ≥ 2; method 2: K ≥ 4; method 1:
-/// K ≥ 6). Throws std::invalid_argument naming the curve for bad curves, coincident
+/// K ≥ 6). Throws InvalidArgument naming the curve for bad curves, coincident
 /// spacing (two consecutive curves at the same u) or a singular system.
 CrossSectionChain buildCrossSectionChain(std::span<const CurveInput> curves,
                                          const CrossSectionOptions& options = {});

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh.hpp"
-#include "pdesurf/model_error.hpp"
 #include "pdesurf/spectral.hpp"
 
 namespace pdesurf {

@@ -43,16 +43,16 @@ struct AffineMap {
     return {linear * first.linear, linear * first.translation + translation};
   }
 
-  /// x + t. Throws std::invalid_argument when t is not finite.
+  /// x + t. Throws InvalidArgument when t is not finite.
   static AffineMap translationBy(const Vec3& t);
   /// A turn by `radians` about the line through `center` along `axis` (right-handed).
-  /// Throws std::invalid_argument for a zero or non-finite axis, a non-finite angle or
+  /// Throws InvalidArgument for a zero or non-finite axis, a non-finite angle or
   /// center.
   static AffineMap rotationAbout(const Vec3& axis, double radians, const Vec3& center);
-  /// center + s (x − center). Throws std::invalid_argument unless s is finite and > 0.
+  /// center + s (x − center). Throws InvalidArgument unless s is finite and > 0.
   static AffineMap scalingAbout(double s, const Vec3& center);
 
-  /// Throws std::invalid_argument when an entry is not finite or A is singular
+  /// Throws InvalidArgument when an entry is not finite or A is singular
   /// (kSingularMapTolerance).
   void validate() const;
   /// Whether A = s R, s > 0, R a rotation, to `tolerance` relative to s² (A Aᵀ = s² I).

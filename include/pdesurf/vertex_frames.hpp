@@ -219,7 +219,7 @@ class Tessellator {
   Tessellator& operator=(Tessellator&&) noexcept;
 
   /// The mesh of `surface`; the reference stays valid (and the mesh unchanged) until the next
-  /// call. Throws std::length_error as tessellate() does.
+  /// call. Throws InvalidArgument as tessellate() does.
   const Mesh& tessellate(const VertexFrameSurface& surface, const TessellateOptions& options = {});
 
   /// The mesh of the last call.

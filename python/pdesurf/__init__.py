@@ -18,8 +18,8 @@ import os as _os
 import numpy as _np
 
 from . import _core
-from ._errors import (CadError, Error, FileError, LayoutError, MeshIOError, ModelError,
-                      SectionError, SliceError, ToleranceError)
+from ._errors import (CadError, Error, FileError, InvalidArgumentError, LayoutError, LoftError,
+                      MeshIOError, ModelError, SectionError, SliceError, ToleranceError)
 from ._core import Mesh, Model, Session, Surface, get_threads, read_mesh, set_threads
 
 __all__ = [
@@ -27,7 +27,7 @@ __all__ = [
     "polygon_peer",
     "set_threads", "get_threads", "release_mesh_memory", "Model", "Surface", "Mesh",
     "Session", "Error", "ModelError", "FileError", "MeshIOError", "LayoutError", "SliceError",
-    "SectionError", "CadError", "ToleranceError",
+    "InvalidArgumentError", "SectionError", "CadError", "ToleranceError", "LoftError",
 ]
 
 release_mesh_memory = _core.release_mesh_memory

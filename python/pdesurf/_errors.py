@@ -1,8 +1,9 @@
 """pdesurf's exceptions: one class a kind of the C++ library's errors, all under Error.
 
-The compiled core (pdesurf._core) raises these for the library's exceptions; a bad argument
-(a wrong array shape or dtype, a value that is not finite, an index out of range, an unknown
-option) raises ValueError naming the argument instead.
+The compiled core (pdesurf._core) raises these for the library's exceptions (pdesurf::Error
+and its kinds, include/pdesurf/error.hpp), with the parts the C++ error carries; a bad
+argument the binding itself checks (a wrong array shape or dtype, a value that is not
+finite, an index out of range, an unknown option) raises ValueError naming the argument.
 """
 
 
@@ -41,7 +42,12 @@ class SliceError(Error):
     """A mesh cannot be sliced as asked: a plane misses it or cuts no closed loop."""
 
 
-class SectionError(Error, ValueError):
+class InvalidArgumentError(Error, ValueError):
+    """An argument the library cannot use (a count below its minimum, a value that is not
+    finite, curves that do not close); a ValueError as well."""
+
+
+class SectionError(InvalidArgumentError):
     """A section of a cross-section rebuild cannot be used (it names the section)."""
 
 
@@ -51,3 +57,7 @@ class CadError(Error):
 
 class ToleranceError(Error):
     """A face of an export missed the tolerance asked for within max_spans."""
+
+
+class LoftError(Error):
+    """Open CASCADE could not loft the sections (the peer of a cross-section rebuild)."""

@@ -26,6 +26,7 @@
 #include "pdesurf/atomic_file.hpp"
 #include "pdesurf/cad_export.hpp"
 #include "pdesurf/edit_io.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/model_io.hpp"
@@ -39,15 +40,34 @@ namespace pdesurf::python {
 namespace {
 
 // ---------------------------------------------------------------------------------------
-// Errors: the library's exception classes as pdesurf.Error and its subclasses
-// (python/pdesurf/_errors.py), std::invalid_argument and std::out_of_range as ValueError.
+// Errors: pdesurf::Error and its kinds (pdesurf/error.hpp) as pdesurf.Error and its
+// subclasses (python/pdesurf/_errors.py), file, path and message taken from the error's
+// accessors; the standard library's out_of_range and length_error (an index or a size past
+// a container's) as ValueError.
 
-void raise(const char* cls, const std::exception& e, py::object message = py::none(),
-           py::object file = py::none(), py::object path = py::none()) {
+/// The Python class of a library error: the class of its most derived kind.
+const char* pythonClass(const Error& e) {
+  if (dynamic_cast<const ModelError*>(&e)) return "ModelError";
+  if (dynamic_cast<const MeshIoError*>(&e)) return "MeshIOError";
+  if (dynamic_cast<const FileError*>(&e)) return "FileError";
+  if (dynamic_cast<const LayoutError*>(&e)) return "LayoutError";
+  if (dynamic_cast<const MeshSliceError*>(&e)) return "SliceError";
+  if (dynamic_cast<const SectionError*>(&e)) return "SectionError";
+  if (dynamic_cast<const InvalidArgument*>(&e)) return "InvalidArgumentError";
+  if (dynamic_cast<const CadError*>(&e)) return "CadError";
+  if (dynamic_cast<const NurbsToleranceError*>(&e)) return "ToleranceError";
+  if (dynamic_cast<const LoftError*>(&e)) return "LoftError";
+  return "Error";
+}
+
+/// Sets the Python error of class `cls` (pdesurf._errors) with the library's whole text and
+/// its parts; a part the error leaves empty is None.
+void raise(const char* cls, const Error& e) {
+  auto part = [](const std::string& s) { return s.empty() ? py::object(py::none()) : py::str(s); };
   const py::object type = py::module_::import("pdesurf._errors").attr(cls);
   const py::object error =
-      type(e.what(), py::arg("message") = std::move(message), py::arg("file") = std::move(file),
-           py::arg("path") = std::move(path));
+      type(e.what(), py::arg("message") = py::str(e.message()), py::arg("file") = part(e.file()),
+           py::arg("path") = part(e.jsonPath()));
   PyErr_SetObject(type.ptr(), error.ptr());
 }
 
@@ -58,33 +78,16 @@ void translate(std::exception_ptr thrown) {
     throw;  // the binding's own ValueErrors (badArgument): pybind11 raises them
   } catch (const py::error_already_set&) {
     throw;  // a Python exception (a progress callback's) passes through as it was
-  } catch (const ModelError& e) {
-    raise("ModelError", e, py::str(e.problem()), py::str(e.file()),
-          e.jsonPath().empty() ? py::object(py::none()) : py::str(e.jsonPath()));
-  } catch (const MeshIoError& e) {
-    raise("MeshIOError", e);
-  } catch (const FileError& e) {
-    raise("FileError", e);
-  } catch (const LayoutError& e) {
-    raise("LayoutError", e);
-  } catch (const MeshSliceError& e) {
-    raise("SliceError", e);
-  } catch (const SectionError& e) {
-    raise("SectionError", e, py::str(e.reason()));
-  } catch (const CadError& e) {
-    raise("CadError", e);
-  } catch (const NurbsToleranceError& e) {
-    raise("ToleranceError", e);
-  } catch (const std::invalid_argument& e) {
-    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const Error& e) {
+    raise(pythonClass(e), e);
   } catch (const std::out_of_range& e) {
     PyErr_SetString(PyExc_ValueError, e.what());
   } catch (const std::length_error& e) {
-    PyErr_SetString(PyExc_ValueError, e.what());  // a resolution whose mesh would not fit
+    PyErr_SetString(PyExc_ValueError, e.what());  // a size past what a container holds
   } catch (const std::bad_alloc&) {
     PyErr_SetString(PyExc_MemoryError, "pdesurf: out of memory");
   } catch (const std::runtime_error& e) {
-    raise("Error", e);
+    raise("Error", Error(e.what()));  // a dependency's (a file system's): its text alone
   }
 }
 
@@ -133,7 +136,7 @@ SolveOptions solveOptions(const AnyModel& model, const std::string& solver,
   const SolveOptions options{solver == "local" ? Solver::Local : Solver::Global, seedFrame};
   try {
     checkSolveOptions(model, options);
-  } catch (const std::out_of_range& e) {
+  } catch (const InvalidArgument& e) {
     badArgument("seed_frame", e.what());
   }
   return options;

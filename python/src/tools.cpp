@@ -99,7 +99,7 @@ SliceOptions sliceOptions(const std::string& axis, std::uint32_t count, const py
     slice.range = std::pair{r.at(0, 0), r.at(0, 1)};
     try {
       slicePlanes(slice, 0.0, 1.0);  // the range's own checks
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidArgument& e) {
       badArgument("range", e.what());
     }
   }

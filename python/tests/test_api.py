@@ -382,6 +382,26 @@ def test_model_errors_name_file_path_and_problem(tmp_path):
         pdesurf.read_mesh(str(tmp_path / "missing.off"))
 
 
+def test_library_errors_arrive_with_the_parts_the_cpp_error_carries(tmp_path):
+    # A mesh file: its name in .file, the problem alone in .message, no JSON path.
+    missing = str(tmp_path / "missing.obj")
+    with pytest.raises(pdesurf.MeshIOError) as read:
+        pdesurf.read_mesh(missing)
+    e = read.value
+    assert isinstance(e, pdesurf.FileError) and isinstance(e, pdesurf.Error)
+    assert e.file == missing and e.path is None
+    assert e.message.startswith("cannot open: ") and str(e) == f"{missing}: {e.message}"
+    # A library function's argument it cannot use: an InvalidArgumentError, a ValueError too,
+    # naming no file.
+    flat = pdesurf.Mesh(np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0]], float),
+                        np.array([[0, 1, 2]]))
+    with pytest.raises(pdesurf.InvalidArgumentError) as bad:
+        pdesurf.compare(pdesurf.load(ROOT / "examples/mug.json"), flat)
+    assert isinstance(bad.value, ValueError)
+    assert bad.value.file is None and bad.value.path is None
+    assert bad.value.message and str(bad.value) == bad.value.message
+
+
 def test_help_reads_well():
     for name in pdesurf.__all__:
         item = getattr(pdesurf, name)

@@ -1,5 +1,6 @@
 // Bilinear and bicubic Coons patches (seed 000 §4.2; Coons 1967): docs/coons.md.
 #include "pdesurf/coons.hpp"
+#include "pdesurf/error.hpp"
 
 #include <cmath>
 #include <memory>
@@ -135,7 +136,7 @@ CoonsTangents patchTangents(const VertexFramePatch& source) {
 }
 
 Mesh tessellate(const std::vector<CoonsPatch>& patches, std::uint32_t n) {
-  if (n < 2) throw std::invalid_argument("Coons tessellation needs at least 2 samples per side");
+  if (n < 2) throw InvalidArgument("Coons tessellation needs at least 2 samples per side");
   Mesh mesh;
   for (std::size_t k = 0; k < patches.size(); ++k) {
     const auto base = static_cast<std::uint32_t>(mesh.vertexCount());

@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 
 #include "numerics/triangle_tree.hpp"
+#include "pdesurf/error.hpp"
 
 namespace pdesurf {
 namespace {
@@ -48,7 +49,7 @@ AreaTriangles areaTriangles(const Mesh& mesh, const char* which) {
     out.total += area;
   }
   if (out.corners.empty())
-    throw std::invalid_argument(
+    throw InvalidArgument(
         fmt::format("the {} mesh has no triangle with area ({} triangles, all degenerate)", which,
                     mesh.triangleCount()));
   return out;

@@ -1,5 +1,6 @@
 // Cross sections of triangle meshes: planes perpendicular to an axis, loops welded by edge.
 #include "pdesurf/mesh_slice.hpp"
+#include "pdesurf/error.hpp"
 
 #include <algorithm>
 #include <array>
@@ -208,7 +209,7 @@ std::optional<Axis> parseAxis(const std::string& name) {
 
 std::vector<double> slicePlanes(const SliceOptions& options, double lo, double hi) {
   const std::uint32_t count = options.count;
-  if (count == 0) throw std::invalid_argument("slicing needs at least one plane (count is 0)");
+  if (count == 0) throw InvalidArgument("slicing needs at least one plane (count is 0)");
   std::vector<double> planes(count);
   if (!options.range) {
     for (std::uint32_t i = 0; i < count; ++i)
@@ -217,7 +218,7 @@ std::vector<double> slicePlanes(const SliceOptions& options, double lo, double h
   }
   const auto [a, b] = *options.range;
   if (!std::isfinite(a) || !std::isfinite(b) || a > b || (a == b && count > 1))
-    throw std::invalid_argument(fmt::format(
+    throw InvalidArgument(fmt::format(
         "slicing range [{}, {}]: needs finite a < b (a = b only for a single plane)", a, b));
   if (count == 1) return {0.5 * (a + b)};
   for (std::uint32_t i = 0; i < count; ++i)
@@ -229,9 +230,8 @@ std::vector<MeshSection> sliceMesh(const Mesh& mesh, const SliceOptions& options
   const int k = axisIndex(options.axis);
   const char* name = axisName(options.axis);
   if (options.near && !options.near->allFinite())
-    throw std::invalid_argument(fmt::format("slicing near ({}, {}, {}): the point is not finite",
-                                            options.near->x(), options.near->y(),
-                                            options.near->z()));
+    throw InvalidArgument(fmt::format("slicing near ({}, {}, {}): the point is not finite",
+                                      options.near->x(), options.near->y(), options.near->z()));
   if (mesh.triangleCount() == 0) throw MeshSliceError("cannot slice a mesh with no triangles");
   // The extent along the axis, over the vertices that triangles use.
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;

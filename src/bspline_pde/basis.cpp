@@ -12,8 +12,8 @@ namespace pdesurf {
 
 std::vector<double> cubicKnots(KnotType type, std::uint32_t n) {
   if (n < 3)
-    throw std::invalid_argument("cubicKnots: n = " + std::to_string(n) +
-                                " (last control index) must be at least 3");
+    throw InvalidArgument("cubicKnots: n = " + std::to_string(n) +
+                          " (last control index) must be at least 3");
   const double spans = static_cast<double>(n - 2);
   std::vector<double> knots(n + 5);
   for (std::uint32_t k = 0; k < n + 5; ++k) {
@@ -93,12 +93,10 @@ CubicBasis cubicBasis(std::span<const double> knots, std::uint32_t n, double t) 
 
 std::array<double, 4> thirdDerivativeMask(std::span<const double> knots, std::uint32_t span) {
   if (knots.size() < 8 || span < 3 || span + 5 > knots.size())
-    throw std::invalid_argument("thirdDerivativeMask: span " + std::to_string(span) +
-                                " is not one of 3..n for " + std::to_string(knots.size()) +
-                                " knots");
+    throw InvalidArgument("thirdDerivativeMask: span " + std::to_string(span) +
+                          " is not one of 3..n for " + std::to_string(knots.size()) + " knots");
   if (!(knots[span + 1] > knots[span]))
-    throw std::invalid_argument("thirdDerivativeMask: span " + std::to_string(span) +
-                                " has zero length");
+    throw InvalidArgument("thirdDerivativeMask: span " + std::to_string(span) + " has zero length");
   const auto n = static_cast<std::uint32_t>(knots.size() - 5);
   // The third derivative is constant on the span: take it at the midpoint (away from the
   // knots, so findSpan lands on `span`).

@@ -41,13 +41,13 @@ void insertKnot(std::vector<double>& knots, std::vector<Vec3>& points, double t)
 /// is not already 2n - 1, on 2(n-2) uniform clamped spans of [0, 1].
 std::vector<Vec3> refitCurve(const BSplineCurve& curve, std::uint32_t n, const std::string& where) {
   if (curve.points.size() < 4)
-    throw std::invalid_argument(where + ": " + std::to_string(curve.points.size()) +
-                                " control points; a cubic needs at least 4");
+    throw InvalidArgument(where + ": " + std::to_string(curve.points.size()) +
+                          " control points; a cubic needs at least 4");
   if (curve.knots != KnotType::Clamped)
-    throw std::invalid_argument(where + ": needs clamped knots (it must interpolate its ends)");
+    throw InvalidArgument(where + ": needs clamped knots (it must interpolate its ends)");
   for (std::size_t k = 0; k < curve.points.size(); ++k)
     if (!curve.points[k].allFinite())
-      throw std::invalid_argument(where + ": point " + std::to_string(k) + " is not finite");
+      throw InvalidArgument(where + ": point " + std::to_string(k) + " is not finite");
   const std::uint32_t last = 2 * n - 2;
   if (curve.points.size() == last + 1) return curve.points;
   return bspline::fitFunction([&curve](double t) { return curve.evaluate(t); }, KnotType::Clamped,
@@ -228,8 +228,8 @@ double measureC1Gap(const std::vector<BSplineSurface>& pieces,
 C1Blend blendFourCurves(const BSplineCurve& uMin, const BSplineCurve& uMax,
                         const BSplineCurve& vMin, const BSplineCurve& vMax, std::uint32_t n) {
   if (n < 3)
-    throw std::invalid_argument("blendFourCurves: n = " + std::to_string(n) +
-                                " (last index of a piece) must be at least 3");
+    throw InvalidArgument("blendFourCurves: n = " + std::to_string(n) +
+                          " (last index of a piece) must be at least 3");
   const auto split = [n](const BSplineCurve& c, const char* name) {
     return splitAtMiddle(refitCurve(c, n, std::string("blendFourCurves: curve ") + name), n);
   };
@@ -238,8 +238,8 @@ C1Blend blendFourCurves(const BSplineCurve& uMin, const BSplineCurve& uMax,
   const double extent = extentOf({&w, &e, &s, &nn});
   const auto corner = [&](const Vec3& a, const char* an, const Vec3& b, const char* bn) {
     if ((a - b).norm() > kBSplineCornerTolerance * extent)
-      throw std::invalid_argument(std::string("blendFourCurves: curves ") + an + " and " + bn +
-                                  " do not meet at their shared corner");
+      throw InvalidArgument(std::string("blendFourCurves: curves ") + an + " and " + bn +
+                            " do not meet at their shared corner");
   };
   corner(w.front(), "uMin", s.front(), "vMin");
   corner(w.back(), "uMin", nn.front(), "vMax");
@@ -284,8 +284,8 @@ C1Blend blendFourCurves(const BSplineCurve& uMin, const BSplineCurve& uMax,
 
 C1Blend blendClosedCurves(const BSplineCurve& start, const BSplineCurve& end, std::uint32_t n) {
   if (n < 3)
-    throw std::invalid_argument("blendClosedCurves: n = " + std::to_string(n) +
-                                " (last index of a piece) must be at least 3");
+    throw InvalidArgument("blendClosedCurves: n = " + std::to_string(n) +
+                          " (last index of a piece) must be at least 3");
   const auto closedSplit = [n](const BSplineCurve& c, const char* name) {
     const std::string where = std::string("blendClosedCurves: curve ") + name;
     std::vector<Vec3> points = refitCurve(c, n, where);
@@ -293,7 +293,7 @@ C1Blend blendClosedCurves(const BSplineCurve& start, const BSplineCurve& end, st
     for (const Vec3& p : c.points) box.extend(p);
     const double size = std::max(box.diagonal().norm(), 1e-300);
     if ((c.points.front() - c.points.back()).norm() > kBSplineCornerTolerance * size)
-      throw std::invalid_argument(where + " is not closed: its first and last points differ");
+      throw InvalidArgument(where + " is not closed: its first and last points differ");
     // C1 where it closes: the first and last legs (equal spans) become their mean.
     const Vec3 leg = 0.5 * ((points[1] - points[0]) + (points.back() - points[points.size() - 2]));
     points.back() = points.front();

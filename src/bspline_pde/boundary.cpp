@@ -15,11 +15,11 @@ namespace pdesurf {
 
 Vec3 BSplineCurve::evaluate(double t, int k) const {
   if (points.size() < 4)
-    throw std::invalid_argument("BSplineCurve: " + std::to_string(points.size()) +
-                                " control points; a cubic needs at least 4");
+    throw InvalidArgument("BSplineCurve: " + std::to_string(points.size()) +
+                          " control points; a cubic needs at least 4");
   if (k < 0 || k > 3)
-    throw std::invalid_argument("BSplineCurve: derivative order " + std::to_string(k) +
-                                " must be within 0..3");
+    throw InvalidArgument("BSplineCurve: derivative order " + std::to_string(k) +
+                          " must be within 0..3");
   const auto n = static_cast<std::uint32_t>(points.size() - 1);
   const std::vector<double> knotVector = cubicKnots(knots, n);
   const CubicBasis b = bspline::cubicBasis(knotVector, n, t);
@@ -40,9 +40,8 @@ std::vector<Vec3> fitControlPoints(const std::vector<Vec3>& values,
   const Eigen::Index first = pinEnds ? 1 : 0;
   const Eigen::Index cols = static_cast<Eigen::Index>(n) + 1 - 2 * first;
   if (rows < cols + 2 * first)
-    throw std::invalid_argument(where + ": " + std::to_string(values.size()) +
-                                " samples are too few for " + std::to_string(n + 1) +
-                                " control points");
+    throw InvalidArgument(where + ": " + std::to_string(values.size()) +
+                          " samples are too few for " + std::to_string(n + 1) + " control points");
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(rows, cols);
   Eigen::MatrixXd b(rows, 3);
   for (Eigen::Index k = 0; k < rows; ++k) {
@@ -62,8 +61,8 @@ std::vector<Vec3> fitControlPoints(const std::vector<Vec3>& values,
   }
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
   if (qr.rank() < cols)
-    throw std::invalid_argument(where + ": the samples leave some of the " + std::to_string(n + 1) +
-                                " control points undetermined (too few samples in some span)");
+    throw InvalidArgument(where + ": the samples leave some of the " + std::to_string(n + 1) +
+                          " control points undetermined (too few samples in some span)");
   const Eigen::MatrixXd x = qr.solve(b);
   std::vector<Vec3> out(n + 1);
   for (Eigen::Index c = 0; c < cols; ++c) out[static_cast<std::size_t>(c + first)] = x.row(c);
@@ -83,7 +82,7 @@ std::vector<Vec3> fitFunction(const std::function<Vec3(double)>& f, KnotType kno
     params[k] = static_cast<double>(k) / m;
     values[k] = f(params[k]);
     if (!values[k].allFinite())
-      throw std::invalid_argument(where + ": not finite at parameter " + std::to_string(params[k]));
+      throw InvalidArgument(where + ": not finite at parameter " + std::to_string(params[k]));
   }
   return fitControlPoints(values, params, knots, n, pinEnds, where);
 }
@@ -102,29 +101,27 @@ struct Side {
 void requireFinite(const std::vector<Vec3>& points, const std::string& where) {
   for (std::size_t k = 0; k < points.size(); ++k)
     if (!points[k].allFinite())
-      throw std::invalid_argument(where + ": point " + std::to_string(k) + " is not finite");
+      throw InvalidArgument(where + ": point " + std::to_string(k) + " is not finite");
 }
 
 std::vector<double> sampleParameters(const CurveSamples& s, const std::string& where) {
   const std::size_t m = s.points.size();
-  if (m < 2) throw std::invalid_argument(where + ": needs at least 2 samples");
+  if (m < 2) throw InvalidArgument(where + ": needs at least 2 samples");
   requireFinite(s.points, where);
   if (!s.t.empty()) {
     if (s.t.size() != m)
-      throw std::invalid_argument(where + ": " + std::to_string(s.t.size()) + " parameters for " +
-                                  std::to_string(m) + " samples");
+      throw InvalidArgument(where + ": " + std::to_string(s.t.size()) + " parameters for " +
+                            std::to_string(m) + " samples");
     if (s.t.front() != 0.0 || s.t.back() != 1.0)
-      throw std::invalid_argument(where + ": parameters must start at 0 and end at 1");
+      throw InvalidArgument(where + ": parameters must start at 0 and end at 1");
     for (std::size_t k = 1; k < m; ++k)
       if (!(s.t[k] > s.t[k - 1]))
-        throw std::invalid_argument(where + ": parameter " + std::to_string(k) +
-                                    " does not increase");
+        throw InvalidArgument(where + ": parameter " + std::to_string(k) + " does not increase");
     return s.t;
   }
   std::vector<double> t(m, 0.0);
   for (std::size_t k = 1; k < m; ++k) t[k] = t[k - 1] + (s.points[k] - s.points[k - 1]).norm();
-  if (!(t.back() > 0.0))
-    throw std::invalid_argument(where + ": all samples coincide (no chord length)");
+  if (!(t.back() > 0.0)) throw InvalidArgument(where + ": all samples coincide (no chord length)");
   for (double& x : t) x /= t.back();
   t.back() = 1.0;
   return t;
@@ -137,21 +134,21 @@ std::vector<Vec3> sidePoints(const Side& side) {
     requireFinite(c->points, where);
     if (c->points.size() == side.n + 1 && c->knots == side.knots) return c->points;
     if (side.knots != KnotType::Clamped)
-      throw std::invalid_argument(where + ": has " + std::to_string(c->points.size()) +
-                                  " control points on other knots; uniform knots along this "
-                                  "side need exactly " +
-                                  std::to_string(side.n + 1) + " on uniform knots");
+      throw InvalidArgument(where + ": has " + std::to_string(c->points.size()) +
+                            " control points on other knots; uniform knots along this "
+                            "side need exactly " +
+                            std::to_string(side.n + 1) + " on uniform knots");
     if (c->points.size() < 4)
-      throw std::invalid_argument(where + ": " + std::to_string(c->points.size()) +
-                                  " control points; a cubic needs at least 4");
+      throw InvalidArgument(where + ": " + std::to_string(c->points.size()) +
+                            " control points; a cubic needs at least 4");
     return bspline::fitFunction([c](double t) { return c->evaluate(t); }, side.knots, side.n, true,
                                 where);
   }
   const auto& samples = std::get<CurveSamples>(*side.curve);
   if (side.knots != KnotType::Clamped)
-    throw std::invalid_argument(where +
-                                ": sampled curves need clamped knots along the side "
-                                "(a uniform-knot surface does not interpolate its boundary)");
+    throw InvalidArgument(where +
+                          ": sampled curves need clamped knots along the side "
+                          "(a uniform-knot surface does not interpolate its boundary)");
   return bspline::fitControlPoints(samples.points, sampleParameters(samples, where), side.knots,
                                    side.n, true, where);
 }
@@ -163,17 +160,17 @@ std::vector<Vec3> secondRow(const SecondRow& second, const std::vector<Vec3>& fi
   const auto n = static_cast<std::uint32_t>(first.size() - 1);
   if (const auto* given = std::get_if<std::vector<Vec3>>(&second)) {
     if (given->size() != n + 1)
-      throw std::invalid_argument(where + ": " + std::to_string(given->size()) +
-                                  " points given, the side has " + std::to_string(n + 1));
+      throw InvalidArgument(where + ": " + std::to_string(given->size()) +
+                            " points given, the side has " + std::to_string(n + 1));
     requireFinite(*given, where);
     return *given;
   }
   const auto& tangent = std::get<TangentFunction>(second);
-  if (!tangent) throw std::invalid_argument(where + ": empty tangent function");
+  if (!tangent) throw InvalidArgument(where + ": empty tangent function");
   if (across != KnotType::Clamped)
-    throw std::invalid_argument(where +
-                                ": a tangent function needs clamped knots across the "
-                                "side (with uniform knots row 1 does not set the tangent)");
+    throw InvalidArgument(where +
+                          ": a tangent function needs clamped knots across the "
+                          "side (with uniform knots row 1 does not set the tangent)");
   const std::vector<Vec3> d = bspline::fitFunction(tangent, along, n, false, where + " (tangent)");
   // Clamped: x_u(0, v) = (3/λ) Σ_j (P_{1,j} - P_{0,j}) N_j(v), λ = 1/(n_across - 2).
   const double lambda = 1.0 / static_cast<double>(nAcross - 2);
@@ -186,8 +183,8 @@ std::vector<Vec3> secondRow(const SecondRow& second, const std::vector<Vec3>& fi
 
 ControlNet boundaryNet(const BSplineBoundary& bd) {
   if (bd.nu < 3 || bd.nv < 3)
-    throw std::invalid_argument("boundaryNet: nu = " + std::to_string(bd.nu) + ", nv = " +
-                                std::to_string(bd.nv) + "; both last indices must be at least 3");
+    throw InvalidArgument("boundaryNet: nu = " + std::to_string(bd.nu) + ", nv = " +
+                          std::to_string(bd.nv) + "; both last indices must be at least 3");
   const KnotType ku = bd.knots.uKnots, kv = bd.knots.vKnots;
   const std::vector<Vec3> uMin = sidePoints({"uMin", bd.nv, kv, &bd.uMin});
   const std::vector<Vec3> uMax = sidePoints({"uMax", bd.nv, kv, &bd.uMax});
@@ -201,9 +198,9 @@ ControlNet boundaryNet(const BSplineBoundary& bd) {
   const auto corner = [&](const Vec3& a, const char* aName, const Vec3& b, const char* bName,
                           const char* label) {
     if ((a - b).norm() > tolerance)
-      throw std::invalid_argument(std::string("boundaryNet: corner ") + label + ": curve " + aName +
-                                  " and curve " + bName + " end " + std::to_string((a - b).norm()) +
-                                  " apart");
+      throw InvalidArgument(std::string("boundaryNet: corner ") + label + ": curve " + aName +
+                            " and curve " + bName + " end " + std::to_string((a - b).norm()) +
+                            " apart");
     return (0.5 * (a + b)).eval();
   };
   ControlNet net(bd.nu, bd.nv);

@@ -13,6 +13,7 @@
 
 #include "numerics/banded_lu.hpp"
 #include "pdesurf/bspline_pde.hpp"
+#include "pdesurf/error.hpp"
 
 namespace pdesurf::bspline {
 
@@ -24,20 +25,20 @@ std::uint32_t findSpan(std::span<const double> knots, std::uint32_t n, double t)
 /// (Piegl & Tiller, The NURBS Book, A2.3, for degree 3).
 CubicBasis cubicBasis(std::span<const double> knots, std::uint32_t n, double t);
 
-/// Throws std::invalid_argument unless nu, nv ≥ 3, the point count is (nu+1)(nv+1) and every
+/// Throws InvalidArgument unless nu, nv ≥ 3, the point count is (nu+1)(nv+1) and every
 /// point (every given point when `innerExempt`) is finite. `where` starts each message.
 void validateNet(const ControlNet& net, bool innerExempt, std::string_view where);
 
 /// Least-squares control points 0..n on cubic knots of `knots` type for values at parameters
 /// in [0, 1]; with `pinEnds`, the first and last control points are the first and last values
-/// (clamped ends interpolate). Throws std::invalid_argument, starting with `where`, when the
+/// (clamped ends interpolate). Throws InvalidArgument, starting with `where`, when the
 /// samples are too few or leave a control point undetermined.
 std::vector<Vec3> fitControlPoints(const std::vector<Vec3>& values,
                                    const std::vector<double>& params, KnotType knots,
                                    std::uint32_t n, bool pinEnds, const std::string& where);
 
 /// fitControlPoints of f sampled at kBoundaryResampleFactor (n + 1) + 1 uniform parameters;
-/// throws std::invalid_argument where f is not finite.
+/// throws InvalidArgument where f is not finite.
 std::vector<Vec3> fitFunction(const std::function<Vec3(double)>& f, KnotType knots, std::uint32_t n,
                               bool pinEnds, const std::string& where);
 

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "pdesurf/bspline_pde_model.hpp"
+#include "pdesurf/error.hpp"
 
 namespace pdesurf {
 
@@ -87,7 +88,7 @@ SolvedBSplinePde solveBSplineModel(const BSplinePdeModel& m, const std::string& 
         return s;
       }
     }
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     throw ModelError(source, formPath(m.form), e.what());
   }
   s.origin.push_back({0, 0});

@@ -17,20 +17,20 @@ namespace bspline {
 void validateNet(const ControlNet& net, bool innerExempt, std::string_view where) {
   const std::string prefix(where);
   if (net.nu < 3 || net.nv < 3)
-    throw std::invalid_argument(prefix + ": the net's last indices are nu = " +
-                                std::to_string(net.nu) + ", nv = " + std::to_string(net.nv) +
-                                "; both must be at least 3 (4 control points a direction)");
+    throw InvalidArgument(prefix + ": the net's last indices are nu = " + std::to_string(net.nu) +
+                          ", nv = " + std::to_string(net.nv) +
+                          "; both must be at least 3 (4 control points a direction)");
   const std::size_t expected =
       static_cast<std::size_t>(net.nu + 1) * static_cast<std::size_t>(net.nv + 1);
   if (net.points.size() != expected)
-    throw std::invalid_argument(prefix + ": a net with nu = " + std::to_string(net.nu) + ", nv = " +
-                                std::to_string(net.nv) + " has " + std::to_string(expected) +
-                                " points, got " + std::to_string(net.points.size()));
+    throw InvalidArgument(prefix + ": a net with nu = " + std::to_string(net.nu) +
+                          ", nv = " + std::to_string(net.nv) + " has " + std::to_string(expected) +
+                          " points, got " + std::to_string(net.points.size()));
   for (std::uint32_t i = 0; i <= net.nu; ++i)
     for (std::uint32_t j = 0; j <= net.nv; ++j)
       if ((!innerExempt || net.given(i, j)) && !net(i, j).allFinite())
-        throw std::invalid_argument(prefix + ": control point (" + std::to_string(i) + ", " +
-                                    std::to_string(j) + ") is not finite");
+        throw InvalidArgument(prefix + ": control point (" + std::to_string(i) + ", " +
+                              std::to_string(j) + ") is not finite");
 }
 
 namespace {
@@ -56,7 +56,7 @@ BandedLu factoredSystem(const std::vector<Mask>& t, std::string_view direction) 
         lu.at(a, c) = t[static_cast<std::size_t>(a)][static_cast<std::size_t>(r)];
     }
   // Invertible for every n ≥ 3 (docs/bspline-pde.md: the 1-D kernel is the quadratics, fixed
-  // by points 0, 1, n); a zero pivot would mean a bug, not bad input.
+  // by points 0, 1, n); a zero pivot would mean a bug, not bad input. Not a pdesurf::Error.
   if (!lu.factor())
     throw std::logic_error("BSplinePdeSolver: the " + std::string(direction) +
                            " system is singular (n = " + std::to_string(m + 2) + ")");
@@ -110,8 +110,8 @@ BSplinePdeSolver::BSplinePdeSolver(std::uint32_t nu, std::uint32_t nv,
                                    const BSplinePdeOptions& options)
     : impl_(std::make_unique<Impl>()) {
   if (nu < 3 || nv < 3)
-    throw std::invalid_argument("BSplinePdeSolver: nu = " + std::to_string(nu) + ", nv = " +
-                                std::to_string(nv) + "; both last indices must be at least 3");
+    throw InvalidArgument("BSplinePdeSolver: nu = " + std::to_string(nu) + ", nv = " +
+                          std::to_string(nv) + "; both last indices must be at least 3");
   impl_->nu = nu;
   impl_->nv = nv;
   impl_->options = options;
@@ -133,9 +133,9 @@ void BSplinePdeSolver::solveInPlace(ControlNet& net) const {
   const Impl& s = *impl_;
   bspline::validateNet(net, true, "solveBSplinePde");
   if (net.nu != s.nu || net.nv != s.nv)
-    throw std::invalid_argument("BSplinePdeSolver: factored for nu = " + std::to_string(s.nu) +
-                                ", nv = " + std::to_string(s.nv) + ", given a net with nu = " +
-                                std::to_string(net.nu) + ", nv = " + std::to_string(net.nv));
+    throw InvalidArgument("BSplinePdeSolver: factored for nu = " + std::to_string(s.nu) +
+                          ", nv = " + std::to_string(s.nv) + ", given a net with nu = " +
+                          std::to_string(net.nu) + ", nv = " + std::to_string(net.nv));
   const std::uint32_t nu = s.nu, nv = s.nv;
   const int mu = static_cast<int>(nu) - 2, mv = static_cast<int>(nv) - 2;
   const std::array<std::uint32_t, 3> ku = {0, 1, nu}, kv = {0, 1, nv};

@@ -66,8 +66,8 @@ SurfacePoint BSplineSurface::evaluate(double u, double v) const {
 
 Vec3 BSplineSurface::derivative(double u, double v, int a, int b) const {
   if (a < 0 || a > 3 || b < 0 || b > 3)
-    throw std::invalid_argument("BSplineSurface::derivative: orders (" + std::to_string(a) + ", " +
-                                std::to_string(b) + ") must be within 0..3");
+    throw InvalidArgument("BSplineSurface::derivative: orders (" + std::to_string(a) + ", " +
+                          std::to_string(b) + ") must be within 0..3");
   return contract(net_, uBasis(u), a, vBasis(v), b);
 }
 
@@ -83,11 +83,11 @@ void BSplineSurface::evaluateGrid(std::span<const double> us, std::span<const do
 
 Mesh tessellate(const BSplineSurface& surface, const BSplineTessellateOptions& options) {
   if (options.segmentsPerSpan < 1)
-    throw std::invalid_argument("tessellate: segmentsPerSpan must be at least 1");
+    throw InvalidArgument("tessellate: segmentsPerSpan must be at least 1");
   const std::uint32_t su = surface.uSpans(), sv = surface.vSpans();
   const std::uint32_t cu = su * options.segmentsPerSpan, cv = sv * options.segmentsPerSpan;
   if ((static_cast<std::uint64_t>(cu) + 1) * (cv + 1) > 0xffffffffull)
-    throw std::length_error("tessellate: the grid has more vertices than 32-bit indices hold");
+    throw InvalidArgument("tessellate: the grid has more vertices than 32-bit indices hold");
   std::vector<double> us(cu + 1), vs(cv + 1);
   for (std::uint32_t a = 0; a <= cu; ++a) us[a] = static_cast<double>(a) / cu;
   for (std::uint32_t b = 0; b <= cv; ++b) vs[b] = static_cast<double>(b) / cv;

@@ -165,14 +165,13 @@ struct CreaseVisitor : SMS::Edge_collapse_visitor_base<SurfaceMesh> {
 
 /// The mesh as a CGAL surface mesh: triangles with area only (counted in `skipped`).
 SurfaceMesh toSurfaceMesh(const Mesh& mesh, const std::string& source, std::size_t& skipped) {
-  if (mesh.triangleCount() == 0)
-    throw LayoutError(fmt::format("{}: the mesh has no triangles", source));
+  if (mesh.triangleCount() == 0) throw LayoutError(source, "the mesh has no triangles");
   SurfaceMesh sm;
   std::vector<VertexIndex> handle(mesh.vertexCount());
   for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v) {
     const Vec3 p = meshVertex(mesh, v);
     if (!p.allFinite())
-      throw LayoutError(fmt::format("{}: vertex {} is not a finite point", source, v));
+      throw LayoutError(source, fmt::format("vertex {} is not a finite point", v));
     handle[v] = sm.add_vertex(toPoint(p));
   }
   skipped = 0;
@@ -184,16 +183,18 @@ SurfaceMesh toSurfaceMesh(const Mesh& mesh, const std::string& source, std::size
       continue;
     }
     if (sm.add_face(handle[c[0]], handle[c[1]], handle[c[2]]) == SurfaceMesh::null_face())
-      throw LayoutError(fmt::format(
-          "{}: triangle {} ({} {} {}) cannot join the others: the automatic layout needs a "
-          "manifold, consistently oriented mesh (an edge of three triangles, two fans meeting "
-          "at a vertex, or a triangle turned against its neighbours stops it)",
-          source, t, c[0], c[1], c[2]));
+      throw LayoutError(
+          source,
+          fmt::format(
+              "triangle {} ({} {} {}) cannot join the others: the automatic layout needs a "
+              "manifold, consistently oriented mesh (an edge of three triangles, two fans meeting "
+              "at a vertex, or a triangle turned against its neighbours stops it)",
+              t, c[0], c[1], c[2]));
   }
   if (sm.number_of_faces() == 0)
-    throw LayoutError(
-        fmt::format("{}: none of the mesh's {} triangles has an area (all degenerate)", source,
-                    mesh.triangleCount()));
+    throw LayoutError(source,
+                      fmt::format("none of the mesh's {} triangles has an area (all degenerate)",
+                                  mesh.triangleCount()));
   // Vertices no triangle uses would stay as isolated points.
   for (VertexIndex v : handle)
     if (sm.is_isolated(v)) sm.remove_vertex(v);

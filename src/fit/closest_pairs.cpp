@@ -1,5 +1,6 @@
 // Closest-point pairs between a fitted surface and its mesh (closest_pairs.hpp).
 #include "fit/closest_pairs.hpp"
+#include "pdesurf/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -94,7 +95,7 @@ Target::Target(const Mesh& mesh) {
     total += at;
   }
   if (triangles.empty())
-    throw std::invalid_argument(
+    throw InvalidArgument(
         fmt::format("the mesh has no triangle with area ({} triangles)", mesh.triangleCount()));
   for (std::uint32_t v = 0; v < mesh.vertexCount(); ++v)
     if (area[v] > 0.0) {
@@ -173,7 +174,7 @@ Evaluation closestPairs(VertexFrameSurface surface, const SampleGrid& grid, cons
     totalArea += e.pairs[i].weight;
     agreement += e.pairs[i].weight * cosine[i];
   }
-  if (!(totalArea > 0.0)) throw std::invalid_argument("the model's surface has no area");
+  if (!(totalArea > 0.0)) throw InvalidArgument("the model's surface has no area");
   // Folds: samples that disagree with the orientation most of the surface agrees on.
   const double orientation = agreement < 0.0 ? -1.0 : 1.0;
   e.foldsPerFrame.assign(nFrames, 0);

@@ -19,6 +19,7 @@
 #include "fit/linear_surface.hpp"
 #include "fit/shape_step.hpp"
 #include "numerics/force_shape.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/rebuild.hpp"
 
 namespace pdesurf {
@@ -548,8 +549,7 @@ class Fitter {
     }
     factor_.factorize(local);
     if (factor_.info() != Eigen::Success)
-      throw std::runtime_error(
-          "the fit's least-squares system is singular (a vertex no sample depends on)");
+      throw Error("the fit's least-squares system is singular (a vertex no sample depends on)");
     const auto& factor = factor_;
 
     // Preconditioned conjugate gradients on (PᵀKP) y = Pᵀb from y0.
@@ -590,17 +590,17 @@ class Fitter {
 FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
                           const FitOptions& options) {
   if (options.samplesPerSide != 0 && options.samplesPerSide < 3)
-    throw std::invalid_argument("fit: samplesPerSide must be 0 (automatic) or at least 3");
+    throw InvalidArgument("fit: samplesPerSide must be 0 (automatic) or at least 3");
   if (options.fitShape) {
     if (!start.forces.empty())
-      throw std::invalid_argument(
+      throw InvalidArgument(
           fmt::format("fit: the shape fit sets a force on every frame, but the start model has "
                       "{} shared force(s) already",
                       start.forces.size()));
     for (std::size_t k = 0; k < start.frames.size(); ++k) {
       const Frame& f = start.frames[k];
       if (!f.forces.empty())
-        throw std::invalid_argument(
+        throw InvalidArgument(
             fmt::format("fit: the shape fit sets a force on every frame, but frame {} of the "
                         "start model has {} force(s) already",
                         k, f.forces.size()));
@@ -608,7 +608,7 @@ FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
         for (int c = 0; c < 3; ++c) {
           const double a = (w == 0 ? f.a1 : f.a2)[c];
           if (!(a >= kMinShapeParameter && a <= kMaxShapeParameter))
-            throw std::invalid_argument(fmt::format(
+            throw InvalidArgument(fmt::format(
                 "fit: frame {} has a{}.{} = {}, outside the range the shape fit keeps a1 and a2 "
                 "in, [{}, {}]",
                 k, w + 1, "xyz"[c], a, kMinShapeParameter, kMaxShapeParameter));

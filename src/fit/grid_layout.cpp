@@ -92,7 +92,7 @@ class UvLocator {
 VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
                             const std::string& source) {
   if (options.u < 1 || options.v < 1)
-    throw LayoutError(fmt::format("{}: a grid needs at least 1 × 1 frames", source));
+    throw LayoutError(source, "a grid needs at least 1 × 1 frames");
   // The mesh as a CGAL surface mesh: used vertices only, triangles with area only.
   SurfaceMesh sm;
   std::vector<VertexIndex> handle(disk.vertexCount());
@@ -115,23 +115,25 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
   for (std::size_t t : kept) {
     const std::uint32_t* i = &disk.indices[3 * t];
     if (sm.add_face(handle[i[0]], handle[i[1]], handle[i[2]]) == SurfaceMesh::null_face())
-      throw LayoutError(fmt::format(
-          "{}: triangle {} cannot join the others: --grid needs a manifold, consistently "
-          "oriented mesh (an edge of three triangles, or a flipped triangle, stops it)",
-          source, t));
+      throw LayoutError(
+          source,
+          fmt::format("triangle {} cannot join the others: --grid needs a manifold, consistently "
+                      "oriented mesh (an edge of three triangles, or a flipped triangle, stops it)",
+                      t));
   }
-  if (sm.number_of_faces() == 0)
-    throw LayoutError(fmt::format("{}: the mesh has no triangle with area", source));
+  if (sm.number_of_faces() == 0) throw LayoutError(source, "the mesh has no triangle with area");
   std::vector<SurfaceMesh::Halfedge_index> borders;
   CGAL::Polygon_mesh_processing::extract_boundary_cycles(sm, std::back_inserter(borders));
   const auto euler = static_cast<long>(sm.number_of_vertices()) -
                      static_cast<long>(sm.number_of_edges()) +
                      static_cast<long>(sm.number_of_faces());
   if (borders.size() != 1 || euler != 1)
-    throw LayoutError(fmt::format(
-        "{}: the mesh has {} boundary loop{} and Euler characteristic {}: --grid needs a disk "
-        "(one boundary loop, Euler characteristic 1); use --layout with a quad mesh instead",
-        source, borders.size(), borders.size() == 1 ? "" : "s", euler));
+    throw LayoutError(
+        source,
+        fmt::format(
+            "the mesh has {} boundary loop{} and Euler characteristic {}: --grid needs a disk "
+            "(one boundary loop, Euler characteristic 1); use --layout with a quad mesh instead",
+            borders.size(), borders.size() == 1 ? "" : "s", euler));
 
   // Mean-value coordinates inside a square border placed by arc length (one-to-one, the
   // square being convex), solved by sparse LU. (CGAL 5.5's iterative authalic
@@ -145,8 +147,8 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
   const auto border = CGAL::Polygon_mesh_processing::longest_border(sm).first;
   const SMP::Error_code status = SMP::parameterize(sm, Parameterizer(), border, uvMap);
   if (status != SMP::OK)
-    throw LayoutError(fmt::format("{}: the parameterisation onto a square failed: {}", source,
-                                  SMP::get_error_message(status)));
+    throw LayoutError(source, fmt::format("the parameterisation onto a square failed: {}",
+                                          SMP::get_error_message(status)));
 
   // uv and 3D positions per surface-mesh vertex; triangles as the mesh orients them.
   std::vector<Eigen::Vector2d> uv(sm.number_of_vertices());

@@ -15,21 +15,18 @@ namespace pdesurf {
 
 PolygonMesh readPolygonMesh(const std::string& path) {
   using Point = CGAL::Simple_cartesian<double>::Point_3;
-  if (!std::filesystem::is_regular_file(path))
-    throw LayoutError(fmt::format("{}: no such file", path));
+  if (!std::filesystem::is_regular_file(path)) throw LayoutError(path, "no such file");
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
   if (!CGAL::IO::read_polygon_soup(path, points, polygons))
-    throw LayoutError(fmt::format(
-        "{}: cannot be read as a polygon mesh (OBJ, OFF or PLY by its extension)", path));
-  if (polygons.empty()) throw LayoutError(fmt::format("{}: the mesh has no faces", path));
+    throw LayoutError(path, "cannot be read as a polygon mesh (OBJ, OFF or PLY by its extension)");
+  if (polygons.empty()) throw LayoutError(path, "the mesh has no faces");
   PolygonMesh mesh;
   mesh.points.reserve(points.size());
   for (const Point& p : points) {
     const Vec3 q(p.x(), p.y(), p.z());
     if (!q.allFinite())
-      throw LayoutError(
-          fmt::format("{}: vertex {} is not a finite point", path, mesh.points.size()));
+      throw LayoutError(path, fmt::format("vertex {} is not a finite point", mesh.points.size()));
     mesh.points.push_back(q);
   }
   mesh.faces.reserve(polygons.size());
@@ -37,8 +34,8 @@ PolygonMesh readPolygonMesh(const std::string& path) {
     std::vector<std::uint32_t> face;
     for (std::size_t i : polygons[f]) {
       if (i >= points.size())
-        throw LayoutError(fmt::format("{}: face {}: vertex index {} out of range ({} vertices)",
-                                      path, f, i, points.size()));
+        throw LayoutError(path, fmt::format("face {}: vertex index {} out of range ({} vertices)",
+                                            f, i, points.size()));
       face.push_back(static_cast<std::uint32_t>(i));
     }
     mesh.faces.push_back(std::move(face));
@@ -51,15 +48,18 @@ VertexFrameModel quadLayout(const PolygonMesh& quads, const std::string& source)
   for (std::size_t f = 0; f < quads.faces.size(); ++f) {
     const auto& face = quads.faces[f];
     if (face.size() != 4)
-      throw LayoutError(fmt::format(
-          "{}: face {} has {} corners: a vertex-frame layout takes quads only (one frame per "
-          "quad)",
-          source, f, face.size()));
+      throw LayoutError(
+          source,
+          fmt::format(
+              "face {} has {} corners: a vertex-frame layout takes quads only (one frame per "
+              "quad)",
+              f, face.size()));
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
         if (face[i] == face[j])
-          throw LayoutError(fmt::format("{}: face {} repeats vertex {}: a quad needs four corners",
-                                        source, f, face[i]));
+          throw LayoutError(
+              source,
+              fmt::format("face {} repeats vertex {}: a quad needs four corners", f, face[i]));
   }
   // Edges: each undirected edge once, with the faces on it; more than two is non-manifold.
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edgeFaces;
@@ -70,10 +70,12 @@ VertexFrameModel quadLayout(const PolygonMesh& quads, const std::string& source)
     }
   for (const auto& [edge, faces] : edgeFaces)
     if (faces.size() > 2)
-      throw LayoutError(fmt::format(
-          "{}: face {}: its edge {}-{} is shared by {} faces ({}): a layout must be a manifold "
-          "quad mesh (each edge on one or two faces)",
-          source, faces[2], edge.first, edge.second, faces.size(), fmt::join(faces, ", ")));
+      throw LayoutError(
+          source,
+          fmt::format(
+              "face {}: its edge {}-{} is shared by {} faces ({}): a layout must be a manifold "
+              "quad mesh (each edge on one or two faces)",
+              faces[2], edge.first, edge.second, faces.size(), fmt::join(faces, ", ")));
 
   VertexFrameModel model;
   // The quads' used vertices first, in file order.

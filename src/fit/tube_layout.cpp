@@ -26,9 +26,10 @@ TubeLayout tubeLayout(const Mesh& mesh, const TubeLayoutOptions& options,
                       const std::string& source) {
   if (options.rings < 1 || options.sectors < 3)
     throw LayoutError(
-        fmt::format("{}: a tube needs at least 1 ring and 3 sectors of frames (two sectors would "
+        source,
+        fmt::format("a tube needs at least 1 ring and 3 sectors of frames (two sectors would "
                     "join along both sides) (got {} × {})",
-                    source, options.rings, options.sectors));
+                    options.rings, options.sectors));
   SliceOptions slice = options.slice;
   slice.count = 2 * options.rings + 1;
   const int k = static_cast<int>(slice.axis);
@@ -39,28 +40,29 @@ TubeLayout tubeLayout(const Mesh& mesh, const TubeLayoutOptions& options,
       hi = std::max(hi, double(mesh.positions[3 * v + k]));
     }
     if (!(lo < hi))
-      throw LayoutError(
-          fmt::format("{}: the mesh has no extent along {}", source, axisName(slice.axis)));
+      throw LayoutError(source,
+                        fmt::format("the mesh has no extent along {}", axisName(slice.axis)));
     slice.range = {lo, hi};
   }
   TubeLayout out;
   const bool chosen = slice.near.has_value() || slice.track;
   auto plane = [&](const MeshSection& s) {
-    return fmt::format("{}: plane {} at {}={}", source, s.index, axisName(slice.axis),
-                       s.coordinate);
+    return fmt::format("plane {} at {}={}", s.index, axisName(slice.axis), s.coordinate);
   };
   try {
     out.sections = sliceMesh(mesh, slice);
   } catch (const std::exception& e) {
-    throw LayoutError(fmt::format("{}: {}", source, e.what()));
+    throw LayoutError(source, e.what());
   }
   std::vector<std::vector<Vec3>> loops;
   for (const MeshSection& s : out.sections) {
     if (!chosen && s.loops > 1)
-      throw LayoutError(fmt::format(
-          "{} cuts {} closed loops (separate parts of the mesh): choose the part with --near X "
-          "Y Z, and --track to follow it from plane to plane",
-          plane(s), s.loops));
+      throw LayoutError(
+          source,
+          fmt::format(
+              "{} cuts {} closed loops (separate parts of the mesh): choose the part with --near X "
+              "Y Z, and --track to follow it from plane to plane",
+              plane(s), s.loops));
     loops.push_back(s.points);
   }
   const std::uint32_t perRing = 2 * options.sectors;
@@ -72,7 +74,7 @@ TubeLayout tubeLayout(const Mesh& mesh, const TubeLayoutOptions& options,
   try {
     prepared = prepareSections(loops, prep);
   } catch (const SectionError& e) {
-    throw LayoutError(plane(out.sections.at(e.section())) + ": the loop " + e.reason());
+    throw LayoutError(source, plane(out.sections.at(e.section())) + ": the loop " + e.reason());
   }
 
   // Lattice point (j, i): point j of ring i. Only the points frames use become vertices

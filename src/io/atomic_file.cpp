@@ -41,8 +41,8 @@ AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
     if (fd_ >= 0) break;
     const int error = errno;
     if (error != EEXIST || attempt == 100)
-      throw FileError(fmt::format("{}: cannot create the temporary file {}: {}", path_, tempPath_,
-                                  errnoText(error)));
+      throw FileError(path_, fmt::format("cannot create the temporary file {}: {}", tempPath_,
+                                         errnoText(error)));
   }
   buffer_.reserve(kChunk + kChunk / 4);
 }
@@ -65,8 +65,7 @@ void AtomicFileWriter::commit() {
   if (::close(fd) != 0) failErrno("cannot write");
   if (std::rename(tempPath_.c_str(), path_.c_str()) != 0) {
     const int error = errno;
-    throw FileError(
-        fmt::format("{}: cannot rename {} to it: {}", path_, tempPath_, errnoText(error)));
+    throw FileError(path_, fmt::format("cannot rename {} to it: {}", tempPath_, errnoText(error)));
   }
   committed_ = true;
 }
@@ -88,7 +87,7 @@ void AtomicFileWriter::flush() {
 
 void AtomicFileWriter::failErrno(std::string_view what) const {
   const int error = errno;
-  throw FileError(fmt::format("{}: {}: {}", path_, what, errnoText(error)));
+  throw FileError(path_, fmt::format("{}: {}", what, errnoText(error)));
 }
 
 }  // namespace detail

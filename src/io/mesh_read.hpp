@@ -18,7 +18,7 @@ namespace pdesurf::detail {
 template <typename... Args>
 [[noreturn]] void fail(const std::string& path, fmt::format_string<Args...> format,
                        Args&&... args) {
-  throw MeshIoError(fmt::format("{}: {}", path, fmt::format(format, std::forward<Args>(args)...)));
+  throw MeshIoError(path, fmt::format(format, std::forward<Args>(args)...));
 }
 
 /// `value` as a float: rounded to nearest, ±FLT_MAX for values that round to it, infinite

@@ -147,8 +147,8 @@ class Tokenizer {
   /// Fails with the file name and current line number.
   template <typename... Args>
   [[noreturn]] void fail(fmt::format_string<Args...> format, Args&&... args) const {
-    throw MeshIoError(fmt::format("{}: line {}: {}", path_, line_,
-                                  fmt::format(format, std::forward<Args>(args)...)));
+    throw MeshIoError(
+        path_, fmt::format("line {}: {}", line_, fmt::format(format, std::forward<Args>(args)...)));
   }
 
   [[noreturn]] void failAtEnd(const Where& where) const {

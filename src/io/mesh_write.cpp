@@ -280,7 +280,7 @@ void writeMesh(const Mesh& mesh, const std::string& path) {
   } catch (const MeshIoError&) {
     throw;
   } catch (const FileError& e) {  // the write itself: a MeshIoError like every other failure
-    throw MeshIoError(e.what());
+    throw MeshIoError(e.file(), e.message());
   }
 }
 

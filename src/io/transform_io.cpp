@@ -5,6 +5,7 @@
 
 #include "io/json_reader.hpp"
 #include "pdesurf/edit_io.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/method.hpp"
 
 namespace pdesurf {
@@ -22,7 +23,7 @@ AffineMap part(const Reader& rd, const std::string& path, Make make) {
     AffineMap map = make();
     map.validate();
     return map;
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     rd.fail(path, e.what());
   }
 }

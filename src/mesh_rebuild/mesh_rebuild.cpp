@@ -147,8 +147,8 @@ RebuildResult rebuildCrossSections(const Mesh& mesh, const RebuildOptions& o) {
         tessellate(rebuilt.chain, chainMeasureOptions(rebuilt.chain.patches.size()));
     try {
       measure(report, surface, part, o.samples);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("the rebuilt part: ") + e.what());
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument(std::string("the rebuilt part: ") + e.what());
     }
   }
   report.ms.measure = msSince(t0);

@@ -155,7 +155,7 @@ void checkRebuildOptions(const RebuildOptions& options, RebuildOptionStyle style
   if (options.slice.range) {
     try {
       slicePlanes(options.slice, 0.0, 1.0);  // the range's own checks
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidArgument& e) {
       name.fail("range", fmt::format("{}: {}", name("range"), e.what()));
     }
   }

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "methods/builtin.hpp"
+#include "pdesurf/error.hpp"
 
 namespace pdesurf {
 
@@ -48,9 +49,9 @@ const SurfaceMethod* findWhere(Matches matches) {
 void registerMethod(const SurfaceMethod& method) {
   const std::string_view type = method.typeName();
   if (findMethod(type))
-    throw std::invalid_argument(fmt::format("a method of type \"{}\" is already registered", type));
+    throw InvalidArgument(fmt::format("a method of type \"{}\" is already registered", type));
   if (findWhere([&](const SurfaceMethod& m) { return m.modelType() == method.modelType(); }))
-    throw std::invalid_argument(
+    throw InvalidArgument(
         fmt::format("the model type of method \"{}\" is already another method's", type));
   Registry& r = registry();
   const std::unique_lock lock(r.mutex);
@@ -77,7 +78,7 @@ const SurfaceMethod& methodForModelType(const std::type_info& type) {
   if (const SurfaceMethod* method =
           findWhere([&](const SurfaceMethod& m) { return m.modelType() == index; }))
     return *method;
-  throw std::invalid_argument(
+  throw InvalidArgument(
       fmt::format("no surface method is registered for the model type {}", type.name()));
 }
 

@@ -7,6 +7,7 @@
 #include "methods/builtin.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/edit_io.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/model_io.hpp"
 
 namespace pdesurf::detail {
@@ -110,8 +111,8 @@ class VertexFramesMethod final : public MethodOf<VertexFrameModel> {
   void checkSolveOptions(const AnyModel& model, const SolveOptions& options) const override {
     const std::size_t n = model.get<VertexFrameModel>().frames.size();
     if (options.seedFrame < n) return;
-    throw std::out_of_range(fmt::format("out of range, the model has {} frame{} (indices 0 to {})",
-                                        n, n == 1 ? "" : "s", n - 1));
+    throw InvalidArgument(fmt::format("out of range, the model has {} frame{} (indices 0 to {})", n,
+                                      n == 1 ? "" : "s", n - 1));
   }
   void checkTransform(const AnyModel& model, const AffineMap& map) const override {
     pdesurf::checkTransform(model.get<VertexFrameModel>(), map);

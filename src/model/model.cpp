@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/method.hpp"
 
 namespace pdesurf {
@@ -95,7 +96,7 @@ const Mesh& ModelTessellator::tessellate(const SolvedModel& solved,
 
 Mesh SolvedSurface::tessellate(const TessellateOptions& options) const {
   const std::uint32_t n = options.resolution;
-  if (n < 2) throw std::invalid_argument("tessellate: resolution must be at least 2");
+  if (n < 2) throw InvalidArgument("tessellate: resolution must be at least 2");
   Mesh mesh;
   for (std::size_t k = 0; k < patchCount(); ++k) {
     const PatchDomain d = domain(k);

@@ -8,43 +8,43 @@
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/method.hpp"
 
 namespace pdesurf {
 
 AffineMap AffineMap::translationBy(const Vec3& t) {
   if (!t.allFinite())
-    throw std::invalid_argument(
+    throw InvalidArgument(
         fmt::format("translation [{}, {}, {}] is not finite", t.x(), t.y(), t.z()));
   return {Eigen::Matrix3d::Identity(), t};
 }
 
 AffineMap AffineMap::rotationAbout(const Vec3& axis, double radians, const Vec3& center) {
   if (!axis.allFinite() || axis.norm() == 0.0 || !std::isfinite(axis.norm()))
-    throw std::invalid_argument(
-        fmt::format("rotation axis [{}, {}, {}] is not a finite non-zero vector", axis.x(),
-                    axis.y(), axis.z()));
+    throw InvalidArgument(fmt::format("rotation axis [{}, {}, {}] is not a finite non-zero vector",
+                                      axis.x(), axis.y(), axis.z()));
   if (!std::isfinite(radians))
-    throw std::invalid_argument(fmt::format("rotation angle {} is not finite", radians));
-  if (!center.allFinite()) throw std::invalid_argument("rotation center is not finite");
+    throw InvalidArgument(fmt::format("rotation angle {} is not finite", radians));
+  if (!center.allFinite()) throw InvalidArgument("rotation center is not finite");
   const Eigen::Matrix3d r = Eigen::AngleAxisd(radians, axis.normalized()).toRotationMatrix();
   return {r, center - r * center};
 }
 
 AffineMap AffineMap::scalingAbout(double s, const Vec3& center) {
   if (!std::isfinite(s) || !(s > 0.0))
-    throw std::invalid_argument(fmt::format("scale {} is not a finite number above 0", s));
-  if (!center.allFinite()) throw std::invalid_argument("scaling center is not finite");
+    throw InvalidArgument(fmt::format("scale {} is not a finite number above 0", s));
+  if (!center.allFinite()) throw InvalidArgument("scaling center is not finite");
   return {s * Eigen::Matrix3d::Identity(), (1.0 - s) * center};
 }
 
 void AffineMap::validate() const {
   if (!linear.allFinite() || !translation.allFinite())
-    throw std::invalid_argument("the map has a number that is not finite");
+    throw InvalidArgument("the map has a number that is not finite");
   const double size = linear.norm();
   if (!std::isfinite(size * size * size) ||
       !(std::abs(linear.determinant()) > kSingularMapTolerance * size * size * size))
-    throw std::invalid_argument("the map is singular: it would flatten the model");
+    throw InvalidArgument("the map is singular: it would flatten the model");
 }
 
 bool AffineMap::isSimilarity(double tolerance) const {

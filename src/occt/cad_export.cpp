@@ -93,7 +93,7 @@ std::string modelText(const Model& model, const Protocol& protocol, const std::s
   out.SendModel(protocol);
   std::ostringstream text;
   if (!out.Print(text))
-    throw CadError(fmt::format("{}: Open CASCADE could not write the {} data", path, format));
+    throw CadError(path, fmt::format("Open CASCADE could not write the {} data", format));
   return text.str();
 }
 
@@ -103,7 +103,7 @@ std::string stepText(const TopoDS_Shape& shape, const std::string& path) {
   Interface_Static::SetCVal("write.step.unit", "MM");
   STEPControl_Writer writer;
   if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
-    throw CadError(fmt::format("{}: Open CASCADE could not translate the shape to STEP", path));
+    throw CadError(path, "Open CASCADE could not translate the shape to STEP");
   return modelText<StepData_StepWriter>(writer.Model(), StepAP214::Protocol(), path, "STEP");
 }
 
@@ -111,7 +111,7 @@ std::string igesText(const TopoDS_Shape& shape, const std::string& path) {
   IGESControl_Controller::Init();
   IGESControl_Writer writer("MM", 0);  // mode 0: faces as trimmed surfaces (entity 144)
   if (!writer.AddShape(shape))
-    throw CadError(fmt::format("{}: Open CASCADE could not translate the shape to IGES", path));
+    throw CadError(path, "Open CASCADE could not translate the shape to IGES");
   writer.ComputeModel();
   // What IGESControl_Writer::Write does, with the reals at full precision.
   return modelText<IGESData_IGESWriter>(writer.Model(), IGESSelect_WorkLibrary::DefineProtocol(),
@@ -148,8 +148,8 @@ CadFormat cadFormatFromPath(const std::string& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".step" || ext == ".stp") return CadFormat::Step;
   if (ext == ".igs" || ext == ".iges") return CadFormat::Iges;
-  throw CadError(fmt::format("{}: unknown extension '{}' (export writes .step, .stp, .igs, .iges)",
-                             path, ext));
+  throw CadError(
+      path, fmt::format("unknown extension '{}' (export writes .step, .stp, .igs, .iges)", ext));
 }
 
 CadExportReport writeCad(const NurbsModel& model, const std::string& path, CadFormat format,
@@ -179,9 +179,9 @@ CadExportReport writeCad(const NurbsModel& model, const std::string& path, CadFo
         format == CadFormat::Step ? stepText(shape, path) : igesText(shape, path);
     writeFileAtomically(path, text);
   } catch (const Standard_Failure& e) {
-    throw CadError(fmt::format("{}: Open CASCADE failed: {}", path, e.GetMessageString()));
+    throw CadError(path, fmt::format("Open CASCADE failed: {}", e.GetMessageString()));
   } catch (const FileError& e) {  // the write itself
-    throw CadError(e.what());
+    throw CadError(e.file(), e.message());
   }
   return report;
 }

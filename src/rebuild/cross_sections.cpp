@@ -1,4 +1,5 @@
 // A mesh rebuilt as a cross-section model (include/pdesurf/section_rebuild.hpp).
+#include "pdesurf/error.hpp"
 #include "pdesurf/section_rebuild.hpp"
 
 #include <algorithm>
@@ -80,7 +81,7 @@ SpectralTessellateOptions chainMeasureOptions(std::size_t patches) {
 }
 
 Mesh sectionedPart(const Mesh& mesh, Axis axis, std::span<const MeshSection> sections) {
-  if (sections.empty()) throw std::invalid_argument("no sections to take a part of the mesh by");
+  if (sections.empty()) throw InvalidArgument("no sections to take a part of the mesh by");
   const int k = static_cast<int>(axis);
   const double lo = std::min(sections.front().coordinate, sections.back().coordinate);
   const double hi = std::max(sections.front().coordinate, sections.back().coordinate);
@@ -197,7 +198,7 @@ Mesh sectionedPart(const Mesh& mesh, Axis axis, std::span<const MeshSection> sec
 
 SectionRebuild rebuildFromSections(const Mesh& mesh, const SectionRebuildOptions& options) {
   if (options.prep.points < 2 * options.modes + 1)
-    throw std::invalid_argument(fmt::format(
+    throw InvalidArgument(fmt::format(
         "{} points per section cannot determine {} Fourier modes: resample to at least {} points",
         options.prep.points, options.modes, 2 * options.modes + 1));
   SectionRebuild out;
@@ -207,13 +208,13 @@ SectionRebuild rebuildFromSections(const Mesh& mesh, const SectionRebuildOptions
   std::vector<std::vector<Vec3>> loops;
   for (const MeshSection& s : out.sections) {
     if (!chosen && s.loops > 1)
-      throw std::invalid_argument(
+      throw InvalidArgument(
           fmt::format("{} cuts {} closed loops (separate parts of the mesh): choose the part with "
                       "--near X Y Z, and --track to follow it from plane to plane",
                       planeText(axis, s), s.loops));
     const std::size_t n = distinctPoints(s.points);
     if (!options.exact && n < 2 * std::size_t{options.modes} + 1)
-      throw std::invalid_argument(fmt::format(
+      throw InvalidArgument(fmt::format(
           "{}: the loop has {} points, too few for {} Fourier modes (at least {}): use fewer "
           "modes or a finer mesh",
           planeText(axis, s), n, options.modes, 2 * options.modes + 1));
@@ -225,8 +226,8 @@ SectionRebuild rebuildFromSections(const Mesh& mesh, const SectionRebuildOptions
   try {
     prepared = prepareSections(loops, prep);
   } catch (const SectionError& e) {
-    throw std::invalid_argument(planeText(axis, out.sections.at(e.section())) + ": the loop " +
-                                e.reason());
+    throw InvalidArgument(planeText(axis, out.sections.at(e.section())) + ": the loop " +
+                          e.reason());
   }
   CrossSectionModel& model = out.model;
   model.name = options.name;

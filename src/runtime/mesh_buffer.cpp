@@ -49,7 +49,7 @@ void* mapBlock(std::size_t size) {
   // page boundary: only aligned 2 MiB ranges can be backed by huge pages.
   void* raw =
       mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (raw == MAP_FAILED) throw std::bad_alloc();
+  if (raw == MAP_FAILED) throw std::bad_alloc();  // Not a pdesurf::Error: out of memory.
   const auto start = reinterpret_cast<std::uintptr_t>(raw);
   const std::uintptr_t aligned = (start + kHugePage - 1) / kHugePage * kHugePage;
   if (aligned > start) munmap(raw, aligned - start);

@@ -40,6 +40,7 @@ void ModelSession::apply(const Edit& edit, std::string_view group) {
     transform(t->map);
     return;
   }
+  // Not a pdesurf::Error: the caller's slip (an Edit for a model that takes none), not input.
   if (!editable()) throw std::logic_error("ModelSession::apply: the model has no editable parts");
   if (changesStructure(edit)) {
     const VertexFrameSurface& surface = *solved().frames();

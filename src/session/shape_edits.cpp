@@ -269,7 +269,7 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
 }
 
 void ModelSession::apply(const ShapeEdit& edit, std::string_view group) {
-  if (!takesShapeEdits(model()))
+  if (!takesShapeEdits(model()))  // Not a pdesurf::Error: the caller's slip, not input.
     throw std::logic_error("ModelSession::apply: vertex-frame models take Edit, not ShapeEdit");
   const State* base = &current_;
   const auto* t = std::get_if<TransformCurve>(&edit);

@@ -577,6 +577,7 @@ VertexFrameModel restructure(const VertexFrameModel& model, const FrameTopology&
         if constexpr (std::is_same_v<T, WeldEdges>) return weldEdges(model, topology, e);
         if constexpr (std::is_same_v<T, FlipFrames>) return flipFrames(model, e);
         if constexpr (std::is_same_v<T, MirrorFrames>) return mirrorFrames(model, e);
+        // Not a pdesurf::Error: unreachable (changesStructure chose these edits).
         throw std::logic_error("restructure: not a structure edit");
       },
       edit);

@@ -106,16 +106,16 @@ std::vector<double> chainParameters(const std::vector<ConditionData>& data,
   std::vector<double> u(count, 0.0);
   if (!options.u.empty()) {
     if (options.u.size() != count)
-      throw std::invalid_argument("u: " + std::to_string(options.u.size()) + " values for " +
-                                  std::to_string(count) + " curves");
+      throw InvalidArgument("u: " + std::to_string(options.u.size()) + " values for " +
+                            std::to_string(count) + " curves");
     for (std::size_t i = 0; i < count; ++i) {
       if (!std::isfinite(options.u[i]))
-        throw std::invalid_argument("u[" + std::to_string(i) + "] is not finite");
+        throw InvalidArgument("u[" + std::to_string(i) + "] is not finite");
       if (i > 0 && !(options.u[i] > options.u[i - 1]))
-        throw std::invalid_argument("u[" + std::to_string(i) +
-                                    "] = " + spectral::numberText(options.u[i]) +
-                                    " does not increase from u[" + std::to_string(i - 1) +
-                                    "] = " + spectral::numberText(options.u[i - 1]));
+        throw InvalidArgument("u[" + std::to_string(i) +
+                              "] = " + spectral::numberText(options.u[i]) +
+                              " does not increase from u[" + std::to_string(i - 1) +
+                              "] = " + spectral::numberText(options.u[i - 1]));
       u[i] = options.u[i] - options.u[0];
     }
   } else {
@@ -138,7 +138,7 @@ std::vector<double> chainParameters(const std::vector<ConditionData>& data,
   const double total = u.back();
   for (std::size_t i = 1; i < count; ++i)
     if (!(u[i] - u[i - 1] > kCoincidentSpacing * total))
-      throw std::invalid_argument(
+      throw InvalidArgument(
           "curves " + std::to_string(i - 1) + " and " + std::to_string(i) +
           (options.u.empty() && options.spacing == ChainSpacing::Centroids
                ? " have the same centroid: the chain parameter cannot follow their spacing "
@@ -344,9 +344,9 @@ CrossSectionChain buildGlobalChain(const std::vector<ConditionData>& data,
       rhs.row(row) /= big;
     }
     if (!lu.factor())
-      throw std::invalid_argument("the global chain's system for mode " + std::to_string(n) +
-                                  " is singular (a = " + spectral::numberText(options.a) +
-                                  "): try another a");
+      throw InvalidArgument("the global chain's system for mode " + std::to_string(n) +
+                            " is singular (a = " + spectral::numberText(options.a) +
+                            "): try another a");
     lu.solve(rhs);
     for (std::uint32_t i = 0; i < count; ++i) {
       const Eigen::RowVectorXd d1 = rhs.row(2 * i) / s[i], d2 = rhs.row(2 * i + 1) / (s[i] * s[i]);
@@ -408,17 +408,17 @@ CrossSectionChain buildCrossSectionChain(std::span<const CurveInput> curves,
                               : options.method == ChainMethod::ExactC2 ? 4
                                                                        : 6;
   if (count < least)
-    throw std::invalid_argument(std::string("a cross-section chain (method \"") +
-                                chainMethodName(options.method) + "\") needs at least " +
-                                std::to_string(least) + " curves, got " + std::to_string(count));
+    throw InvalidArgument(std::string("a cross-section chain (method \"") +
+                          chainMethodName(options.method) + "\") needs at least " +
+                          std::to_string(least) + " curves, got " + std::to_string(count));
   std::vector<ConditionData> data;
   for (std::uint32_t i = 0; i < count; ++i) {
     data.push_back(spectral::resolveCurve(curves[i], options.modes, options.parameterization,
                                           options.remainder, "curve " + std::to_string(i)));
     if (data.back().collapsed && i > 0 && i + 1 < count)
-      throw std::invalid_argument("curve " + std::to_string(i) +
-                                  ": degenerate section (all points coincide); only the first "
-                                  "and last sections may collapse to a point");
+      throw InvalidArgument("curve " + std::to_string(i) +
+                            ": degenerate section (all points coincide); only the first "
+                            "and last sections may collapse to a point");
   }
   if (options.method == ChainMethod::Global) return buildGlobalChain(data, options);
   CrossSectionChain chain;

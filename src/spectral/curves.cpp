@@ -45,34 +45,31 @@ double spectral::spread(const std::vector<Vec3>& points) {
 
 std::vector<double> curveParameters(const SampledCurve& curve, VParameterization parameterization) {
   if (!curve.closed)
-    throw std::invalid_argument("open curve: spectral patches need closed curves (periodic in v)");
+    throw InvalidArgument("open curve: spectral patches need closed curves (periodic in v)");
   if (!curve.v.empty()) {
     if (curve.v.size() != curve.points.size())
-      throw std::invalid_argument("curve has " + std::to_string(curve.points.size()) +
-                                  " points but " + std::to_string(curve.v.size()) + " v values");
+      throw InvalidArgument("curve has " + std::to_string(curve.points.size()) + " points but " +
+                            std::to_string(curve.v.size()) + " v values");
     if (curve.points.size() < 3)
-      throw std::invalid_argument("closed curve needs at least 3 points, has " +
-                                  std::to_string(curve.points.size()));
+      throw InvalidArgument("closed curve needs at least 3 points, has " +
+                            std::to_string(curve.points.size()));
     for (std::size_t j = 0; j < curve.v.size(); ++j) {
       const double v = curve.v[j];
       if (!std::isfinite(v) || v < 0.0 || v >= kTwoPi)
-        throw std::invalid_argument("v[" + std::to_string(j) + "] = " + numberText(v) +
-                                    " is outside [0, 2π)");
+        throw InvalidArgument("v[" + std::to_string(j) + "] = " + numberText(v) +
+                              " is outside [0, 2π)");
       if (j > 0 && !(v > curve.v[j - 1]))
-        throw std::invalid_argument("v values must increase strictly: v[" + std::to_string(j) +
-                                    "] = " + numberText(v) + " after " +
-                                    numberText(curve.v[j - 1]));
+        throw InvalidArgument("v values must increase strictly: v[" + std::to_string(j) +
+                              "] = " + numberText(v) + " after " + numberText(curve.v[j - 1]));
     }
     return curve.v;
   }
   const std::vector<Vec3> p = openPoints(curve);
   const std::size_t count = p.size();
   if (count < 3)
-    throw std::invalid_argument("closed curve needs at least 3 points, has " +
-                                std::to_string(count));
+    throw InvalidArgument("closed curve needs at least 3 points, has " + std::to_string(count));
   for (std::size_t j = 0; j < count; ++j)
-    if (!p[j].allFinite())
-      throw std::invalid_argument("point " + std::to_string(j) + " is not finite");
+    if (!p[j].allFinite()) throw InvalidArgument("point " + std::to_string(j) + " is not finite");
   std::vector<double> v(count);
   const bool collapsed = spectral::spread(p) == 0.0;
   if (parameterization == VParameterization::Uniform || collapsed) {
@@ -86,8 +83,8 @@ std::vector<double> curveParameters(const SampledCurve& curve, VParameterization
   for (std::size_t j = 0; j < count; ++j) {
     v[j] = kTwoPi * s[j] / s[count];
     if (j > 0 && !(v[j] > v[j - 1]))
-      throw std::invalid_argument("points " + std::to_string(j - 1) + " and " + std::to_string(j) +
-                                  " coincide: chord-length v needs distinct consecutive points");
+      throw InvalidArgument("points " + std::to_string(j - 1) + " and " + std::to_string(j) +
+                            " coincide: chord-length v needs distinct consecutive points");
   }
   return v;
 }
@@ -100,9 +97,9 @@ FourierFit fitFourier(const SampledCurve& curve, std::uint32_t terms,
   const std::size_t count = fit.points.size();
   const std::size_t unknowns = 2 * static_cast<std::size_t>(terms) + 1;
   if (count < unknowns)
-    throw std::invalid_argument(std::to_string(terms) + " Fourier terms need at least " +
-                                std::to_string(unknowns) + " points, the curve has " +
-                                std::to_string(count));
+    throw InvalidArgument(std::to_string(terms) + " Fourier terms need at least " +
+                          std::to_string(unknowns) + " points, the curve has " +
+                          std::to_string(count));
   // Extended precision and long double storage: no Eigen heap types of double (basis.hpp).
   spectral::MatrixR a(count, unknowns);
   spectral::MatrixR rhs(count, 3);
@@ -116,8 +113,8 @@ FourierFit fitFourier(const SampledCurve& curve, std::uint32_t terms,
   }
   const Eigen::ColPivHouseholderQR<spectral::MatrixR> qr(a);
   if (qr.rank() < static_cast<Eigen::Index>(unknowns))
-    throw std::invalid_argument("the v values do not determine " + std::to_string(terms) +
-                                " Fourier terms (points too clustered in v)");
+    throw InvalidArgument("the v values do not determine " + std::to_string(terms) +
+                          " Fourier terms (points too clustered in v)");
   const spectral::MatrixR c = qr.solve(rhs);
   fit.curve.a0 = c.row(0).transpose().cast<double>();
   fit.curve.a.resize(terms);
@@ -262,8 +259,8 @@ ConditionData resolveCurve(const CurveInput& curve, std::uint32_t modes,
   try {
     if (const auto* f = std::get_if<FourierCurve>(&curve)) {
       if (f->a.size() != f->b.size())
-        throw std::invalid_argument("Fourier curve has " + std::to_string(f->a.size()) +
-                                    " cosine and " + std::to_string(f->b.size()) + " sine terms");
+        throw InvalidArgument("Fourier curve has " + std::to_string(f->a.size()) + " cosine and " +
+                              std::to_string(f->b.size()) + " sine terms");
       c.fourier.a0 = f->a0;
       c.fourier.a.assign(modes, Vec3::Zero());
       c.fourier.b.assign(modes, Vec3::Zero());
@@ -298,8 +295,8 @@ ConditionData resolveCurve(const CurveInput& curve, std::uint32_t modes,
       c.tail.push_back(
           TailTerm{1.0, std::make_shared<PeriodicSpline>(c.v, std::move(residual)), nullptr});
     }
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(what + ": " + e.what());
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(what + ": " + e.what());
   }
   return c;
 }

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral.hpp"
 #include "spectral/basis.hpp"
 

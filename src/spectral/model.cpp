@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral_model.hpp"
 
 namespace pdesurf {
@@ -11,7 +12,7 @@ SpectralPatch solveModel(const SpectralModel& model, const std::string& source) 
     SpectralPatch patch = solveSpectral(model.op, model.conditions, model.options);
     for (const SpineEdit& edit : model.spineEdits) patch = editSpine(patch, edit);
     return patch;
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     throw ModelError(source, "$", e.what());
   }
 }
@@ -19,7 +20,7 @@ SpectralPatch solveModel(const SpectralModel& model, const std::string& source) 
 CrossSectionChain solveModel(const CrossSectionModel& model, const std::string& source) {
   try {
     return buildCrossSectionChain(model.curves, model.options);
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     throw ModelError(source, "$.curves", e.what());
   }
 }

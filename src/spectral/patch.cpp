@@ -69,7 +69,7 @@ ModeSystem<M> factorMode(const spectral::ModeBasis& basis,
   // the solution is checked by its residual instead.
   sys.qr.setThreshold(n == 0 ? static_cast<T>(kSingularPivot) : std::numeric_limits<T>::min());
   if (n == 0 && sys.qr.rank() < order)
-    throw std::invalid_argument(
+    throw InvalidArgument(
         "the conditions do not determine mode " + std::to_string(n) + " (rank " +
         std::to_string(sys.qr.rank()) + " of " + std::to_string(order) +
         "): e.g. only derivative conditions, or several conditions at the same u");
@@ -181,9 +181,9 @@ void solveModeTiered(const spectral::ModeBasis& basis,
     if (residual <= kEscalateResidual) return;
     if (tier == ModePrecision::Quad) {
       if (residual <= kModeResidualLimit) return;  // the best there is, and still sound
-      throw std::invalid_argument("the conditions do not determine mode " + std::to_string(n) +
-                                  " (its system is singular or too ill-conditioned; see "
-                                  "docs/spectral.md)");
+      throw InvalidArgument("the conditions do not determine mode " + std::to_string(n) +
+                            " (its system is singular or too ill-conditioned; see "
+                            "docs/spectral.md)");
     }
     tier = tier == ModePrecision::Double ? ModePrecision::Extended : ModePrecision::Quad;
   }
@@ -233,17 +233,16 @@ SpectralOperator SpectralOperator::fu(double a) {
 }
 
 void SpectralOperator::validate() const {
-  if (!std::isfinite(a)) throw std::invalid_argument("operator parameter a is not finite");
+  if (!std::isfinite(a)) throw InvalidArgument("operator parameter a is not finite");
   if (kind == OperatorKind::Ugail) {
-    if (power < 1) throw std::invalid_argument("Ugail operator needs N >= 1, got N = 0");
+    if (power < 1) throw InvalidArgument("Ugail operator needs N >= 1, got N = 0");
     if (power > 64)
-      throw std::invalid_argument("Ugail operator: N = " + std::to_string(power) +
-                                  " exceeds 64 (order 128)");
-    if (a <= 0.0)
-      throw std::invalid_argument("Ugail operator needs a > 0, got a = " + numberText(a));
+      throw InvalidArgument("Ugail operator: N = " + std::to_string(power) +
+                            " exceeds 64 (order 128)");
+    if (a <= 0.0) throw InvalidArgument("Ugail operator needs a > 0, got a = " + numberText(a));
   } else {
     if (a == 0.0)
-      throw std::invalid_argument("Fu operator needs a != 0 (a = 0 leaves ∂⁶X/∂u⁶ = 0 alone)");
+      throw InvalidArgument("Fu operator needs a != 0 (a = 0 leaves ∂⁶X/∂u⁶ = 0 alone)");
   }
 }
 
@@ -444,8 +443,8 @@ std::vector<double> placeCurves(std::span<const CurveInput> curves, UPlacement p
     std::vector<double> v;
     try {
       v = curveParameters(sc, parameterization);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("curve " + std::to_string(index) + ": " + e.what());
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument("curve " + std::to_string(index) + ": " + e.what());
     }
     const std::size_t n = v.size();
     for (int j = 0; j < kSamples; ++j) {
@@ -467,8 +466,8 @@ std::vector<double> placeCurves(std::span<const CurveInput> curves, UPlacement p
     for (int j = 0; j < kSamples; ++j) d += (cur[j] - prev[j]).norm();
     d /= kSamples;
     if (!(d > 0.0))
-      throw std::invalid_argument("curves " + std::to_string(i - 1) + " and " + std::to_string(i) +
-                                  " coincide: chord-length u places them at the same u");
+      throw InvalidArgument("curves " + std::to_string(i - 1) + " and " + std::to_string(i) +
+                            " coincide: chord-length u places them at the same u");
     u[i] = u[i - 1] + d;
     prev = std::move(cur);
   }
@@ -482,11 +481,11 @@ SpectralPatch solveSpectral(const SpectralOperator& op,
   op.validate();
   const std::size_t order = op.order();
   if (conditions.size() != order)
-    throw std::invalid_argument("an operator of order " + std::to_string(order) + " needs " +
-                                std::to_string(order) + " conditions, got " +
-                                std::to_string(conditions.size()));
+    throw InvalidArgument("an operator of order " + std::to_string(order) + " needs " +
+                          std::to_string(order) + " conditions, got " +
+                          std::to_string(conditions.size()));
   if (options.modes > 512)
-    throw std::invalid_argument("M = " + std::to_string(options.modes) + " modes exceeds 512");
+    throw InvalidArgument("M = " + std::to_string(options.modes) + " modes exceeds 512");
   // u positions.
   std::vector<CurveInput> positionCurves;
   std::vector<std::size_t> positionIndex;
@@ -505,7 +504,7 @@ SpectralPatch solveSpectral(const SpectralOperator& op,
     const SpectralCondition& c = conditions[i];
     if (c.u) {
       if (!std::isfinite(*c.u))
-        throw std::invalid_argument("condition " + std::to_string(i) + ": u is not finite");
+        throw InvalidArgument("condition " + std::to_string(i) + ": u is not finite");
       u[i] = *c.u;
     } else if (c.derivative > 0) {
       for (std::size_t j = i; j-- > 0;)
@@ -515,27 +514,26 @@ SpectralPatch solveSpectral(const SpectralOperator& op,
         }
     }
     if (std::isnan(u[i]))
-      throw std::invalid_argument(
+      throw InvalidArgument(
           "condition " + std::to_string(i) +
           (c.derivative == 0
                ? ": no u given (placement is Given)"
                : ": derivative condition has no u and no position condition before it"));
     if (c.derivative >= order)
-      throw std::invalid_argument("condition " + std::to_string(i) + ": derivative order " +
-                                  std::to_string(c.derivative) + " must be below the PDE order " +
-                                  std::to_string(order));
+      throw InvalidArgument("condition " + std::to_string(i) + ": derivative order " +
+                            std::to_string(c.derivative) + " must be below the PDE order " +
+                            std::to_string(order));
   }
   for (std::size_t i = 0; i < conditions.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (u[i] == u[j] && conditions[i].derivative == conditions[j].derivative)
-        throw std::invalid_argument("conditions " + std::to_string(j) + " and " +
-                                    std::to_string(i) + " both fix derivative " +
-                                    std::to_string(conditions[i].derivative) +
-                                    " at u = " + numberText(u[i]));
+        throw InvalidArgument("conditions " + std::to_string(j) + " and " + std::to_string(i) +
+                              " both fix derivative " + std::to_string(conditions[i].derivative) +
+                              " at u = " + numberText(u[i]));
   const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
   if (!(*hi > *lo))
-    throw std::invalid_argument("all conditions sit at u = " + numberText(*lo) +
-                                ": the patch has no extent");
+    throw InvalidArgument("all conditions sit at u = " + numberText(*lo) +
+                          ": the patch has no extent");
   std::vector<spectral::ConditionData> data;
   for (std::size_t i = 0; i < conditions.size(); ++i) {
     data.push_back(spectral::resolveCurve(conditions[i].curve, options.modes,
@@ -584,18 +582,17 @@ std::vector<Vec3> spinePolyline(const SpectralPatch& patch, std::uint32_t count)
 }
 
 SpectralPatch editSpine(const SpectralPatch& patch, const SpineEdit& edit) {
-  if (edit.u.empty()) throw std::invalid_argument("spine edit has no control points");
+  if (edit.u.empty()) throw InvalidArgument("spine edit has no control points");
   if (edit.u.size() != edit.moved.size())
-    throw std::invalid_argument("spine edit has " + std::to_string(edit.u.size()) +
-                                " u values but " + std::to_string(edit.moved.size()) +
-                                " moved points");
+    throw InvalidArgument("spine edit has " + std::to_string(edit.u.size()) + " u values but " +
+                          std::to_string(edit.moved.size()) + " moved points");
   std::vector<Vec3> delta;
   for (std::size_t j = 0; j < edit.u.size(); ++j) {
     if (!std::isfinite(edit.u[j]) || !edit.moved[j].allFinite())
-      throw std::invalid_argument("spine edit point " + std::to_string(j) + " is not finite");
+      throw InvalidArgument("spine edit point " + std::to_string(j) + " is not finite");
     if (j > 0 && !(edit.u[j] > edit.u[j - 1]))
-      throw std::invalid_argument("spine edit u values must increase strictly (point " +
-                                  std::to_string(j) + ")");
+      throw InvalidArgument("spine edit u values must increase strictly (point " +
+                            std::to_string(j) + ")");
     delta.push_back(edit.moved[j] - patch.spine(edit.u[j]));
   }
   SpectralPatch out = patch;

@@ -226,20 +226,15 @@ double leastTwistStart(const Loop& loop, const std::vector<Vec3>& previous, std:
 
 }  // namespace
 
-SectionError::SectionError(std::uint32_t section, const std::string& reason)
-    : std::invalid_argument("section " + std::to_string(section) + ": " + reason),
-      section_(section),
-      reason_(reason) {}
-
 std::vector<SampledCurve> prepareSections(std::span<const std::vector<Vec3>> raw,
                                           const SectionPrepOptions& options) {
   if (options.points < 8)
-    throw std::invalid_argument("sections are resampled to at least 8 points, asked for " +
-                                std::to_string(options.points));
+    throw InvalidArgument("sections are resampled to at least 8 points, asked for " +
+                          std::to_string(options.points));
   if (options.direction && !(options.direction->allFinite() && options.direction->norm() > 0.0))
-    throw std::invalid_argument("the chain direction must be a finite, non-zero vector");
+    throw InvalidArgument("the chain direction must be a finite, non-zero vector");
   if (options.reference && !(options.reference->allFinite() && options.reference->norm() > 0.0))
-    throw std::invalid_argument("the reference direction must be a finite, non-zero vector");
+    throw InvalidArgument("the reference direction must be a finite, non-zero vector");
   std::vector<Loop> loops;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     loops.push_back(cleanLoop(raw[i], static_cast<std::uint32_t>(i)));

@@ -30,6 +30,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "vertex_frames/row_kernel.hpp"
 
@@ -260,7 +261,7 @@ void TessellationEngine::layOut(const FrameTopology& topo, std::uint32_t frames,
   // Indices are 32-bit (as in glTF and GL): refuse meshes that do not fit.
   if (vertices64 >= kNone || triangles64 * 3 >= kNone) {
     frames_ = 0;  // no valid layout
-    throw std::length_error(fmt::format(
+    throw InvalidArgument(fmt::format(
         "a mesh of {} frames at resolution {} would have {} vertices and {} triangles, more "
         "than 32-bit indices can address: lower the resolution",
         frames, n, vertices64, triangles64));

@@ -127,7 +127,7 @@ TEST(Coons, TessellationAndCli) {
     const Vec3 n(mesh.normals[3 * i], mesh.normals[3 * i + 1], mesh.normals[3 * i + 2]);
     EXPECT_NEAR(n.norm(), 1.0, 1e-6);
   }
-  EXPECT_THROW(tessellate({CoonsPatch::bilinear(b)}, 1), std::invalid_argument);
+  EXPECT_THROW(tessellate({CoonsPatch::bilinear(b)}, 1), InvalidArgument);
 
   testing::TempDir work, capture;
   const std::string model = std::string(PDESURF_SOURCE_DIR) + "/examples/sculpt.json";

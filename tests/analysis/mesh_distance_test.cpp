@@ -159,8 +159,8 @@ TEST(MeshDistance, SameResultForAnyThreadCount) {
 TEST(MeshDistance, DegenerateMeshIsAnInvalidArgument) {
   testing::MeshBuilder line;
   line.triangle(line.vertex(0, 0, 0), line.vertex(1, 0, 0), line.vertex(2, 0, 0));
-  EXPECT_THROW(meshDistance(line.mesh(), testing::sphereMesh(1, 8, 4)), std::invalid_argument);
-  EXPECT_THROW(meshDistance(testing::sphereMesh(1, 8, 4), Mesh{}), std::invalid_argument);
+  EXPECT_THROW(meshDistance(line.mesh(), testing::sphereMesh(1, 8, 4)), InvalidArgument);
+  EXPECT_THROW(meshDistance(testing::sphereMesh(1, 8, 4), Mesh{}), InvalidArgument);
 }
 
 // Real data: CGAL's elephant against itself and against a copy scaled by 1.01 about its

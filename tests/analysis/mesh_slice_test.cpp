@@ -250,7 +250,7 @@ TEST(MeshSlice, NearOnAPlaneWithoutClosedLoopIsAnError) {
         << e.what();
   }
   options.near = Vec3(0, std::numeric_limits<double>::quiet_NaN(), 0);
-  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), std::invalid_argument);
+  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), InvalidArgument);
 }
 
 TEST(MeshSlice, OrientationDoesNotDependOnTheMeshOrientation) {
@@ -337,12 +337,12 @@ TEST(MeshSlice, BoxesSharingAnEdgeAreSliced) {
 TEST(MeshSlice, BadOptionsAreInvalidArguments) {
   SliceOptions options;
   options.count = 0;
-  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), std::invalid_argument);
+  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), InvalidArgument);
   options.count = 2;
   options.range = {{1.0, 1.0}};
-  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), std::invalid_argument);
+  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), InvalidArgument);
   options.range = {{1.0, 0.5}};
-  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), std::invalid_argument);
+  EXPECT_THROW(sliceMesh(cylinderMesh({}), options), InvalidArgument);
 }
 
 TEST(MeshSlice, FlatMeshIsAnError) {

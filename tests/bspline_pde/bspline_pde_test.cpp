@@ -372,7 +372,7 @@ void expectInvalid(F&& f, const std::string& fragment) {
   try {
     f();
     ADD_FAILURE() << "no exception; expected one mentioning \"" << fragment << "\"";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
   }
 }

@@ -198,7 +198,7 @@ TEST(FitShape, RefusesAStartItCannotTake) {
   try {
     fitVertexFrames(truth, target, options);
     ADD_FAILURE() << "a start with forces was taken";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("frame 0 of the start model has 1 force"),
               std::string::npos)
         << e.what();
@@ -208,12 +208,12 @@ TEST(FitShape, RefusesAStartItCannotTake) {
   try {
     fitVertexFrames(start, target, options);
     ADD_FAILURE() << "a negative a2 was taken";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("frame 3 has a2.y = -1"), std::string::npos) << e.what();
   }
   start = layoutOf(truth);
   start.forces.push_back({Vec3(1, 0, 0), {0}});
-  EXPECT_THROW(fitVertexFrames(start, target, options), std::invalid_argument);
+  EXPECT_THROW(fitVertexFrames(start, target, options), InvalidArgument);
 }
 
 }  // namespace

@@ -256,7 +256,7 @@ TEST(Fit, AMeshWithoutAreaIsRejected) {
   Mesh flat;
   flat.positions = {0, 0, 0, 1, 0, 0, 2, 0, 0};
   flat.indices = {0, 1, 2};
-  EXPECT_THROW(fitVertexFrames(model, flat), std::invalid_argument);
+  EXPECT_THROW(fitVertexFrames(model, flat), InvalidArgument);
 }
 
 }  // namespace

@@ -120,16 +120,16 @@ TEST(AffineMap, PartsComposeInOrder) {
 TEST(AffineMap, RefusesScalesAtOrBelowZeroAndNonFiniteParts) {
   const double inf = std::numeric_limits<double>::infinity();
   for (double s : {0.0, -1.0, -0.0, inf, std::nan("")})
-    EXPECT_THROW(AffineMap::scalingAbout(s, Vec3::Zero()), std::invalid_argument) << s;
-  EXPECT_THROW(AffineMap::rotationAbout(Vec3::Zero(), 1.0, Vec3::Zero()), std::invalid_argument);
-  EXPECT_THROW(AffineMap::rotationAbout({0, 0, 1}, inf, Vec3::Zero()), std::invalid_argument);
-  EXPECT_THROW(AffineMap::rotationAbout({0, 0, 1}, 1.0, {0, inf, 0}), std::invalid_argument);
-  EXPECT_THROW(AffineMap::translationBy({std::nan(""), 0, 0}), std::invalid_argument);
+    EXPECT_THROW(AffineMap::scalingAbout(s, Vec3::Zero()), InvalidArgument) << s;
+  EXPECT_THROW(AffineMap::rotationAbout(Vec3::Zero(), 1.0, Vec3::Zero()), InvalidArgument);
+  EXPECT_THROW(AffineMap::rotationAbout({0, 0, 1}, inf, Vec3::Zero()), InvalidArgument);
+  EXPECT_THROW(AffineMap::rotationAbout({0, 0, 1}, 1.0, {0, inf, 0}), InvalidArgument);
+  EXPECT_THROW(AffineMap::translationBy({std::nan(""), 0, 0}), InvalidArgument);
   AffineMap flat;
   flat.linear(2, 2) = 0;  // projects onto z = 0
-  EXPECT_THROW(flat.validate(), std::invalid_argument);
+  EXPECT_THROW(flat.validate(), InvalidArgument);
   // 1e-300 is a valid scale but its cube is 0: the map cannot be undone.
-  EXPECT_THROW(AffineMap::scalingAbout(1e-300, Vec3::Zero()).validate(), std::invalid_argument);
+  EXPECT_THROW(AffineMap::scalingAbout(1e-300, Vec3::Zero()).validate(), InvalidArgument);
 }
 
 // ---------------------------------------------------------------------------------------

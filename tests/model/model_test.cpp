@@ -75,7 +75,7 @@ TEST(Model, SeedFrameOutOfRangeIsRefusedForFramesOnly) {
   const std::size_t frames = mug.get<VertexFrameModel>().frames.size();
   SolveOptions options;
   options.seedFrame = static_cast<std::uint32_t>(frames);
-  EXPECT_THROW(checkSolveOptions(mug, options), std::out_of_range);
+  EXPECT_THROW(checkSolveOptions(mug, options), InvalidArgument);
   options.seedFrame = static_cast<std::uint32_t>(frames - 1);
   EXPECT_NO_THROW(checkSolveOptions(mug, options));
   options.seedFrame = 1000;  // other types have no seed frame to check

@@ -12,9 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/method.hpp"
-#include "pdesurf/model_error.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 #include "support/cli_run.hpp"
@@ -152,7 +152,7 @@ TEST(ToyMethod, RegistryFindsItByTypeNameAndByModel) {
   EXPECT_EQ(model.as<VertexFrameModel>(), nullptr);
   EXPECT_FALSE(hasEditableParts(model));
   // A second method of the same type name or model type is refused.
-  EXPECT_THROW(registerMethod(*method), std::invalid_argument);
+  EXPECT_THROW(registerMethod(*method), InvalidArgument);
   // Unknown types name every registered one.
   const std::string refusal = [] {
     try {

@@ -153,7 +153,7 @@ TEST(SectionRebuild, BadInputNamesThePlane) {
     try {
       rebuildFromSections(elephant, o);
       FAIL() << "accepted: " << what;
-    } catch (const std::invalid_argument& e) {
+    } catch (const InvalidArgument& e) {
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
     }
   };
@@ -170,7 +170,7 @@ TEST(SectionRebuild, BadInputNamesThePlane) {
   try {
     rebuildFromSections(testing::cylinderMesh(c), coarse);
     FAIL() << "a 12-point section taken for 8 modes";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("the loop has 12 points, too few for 8 Fourier modes"),
               std::string::npos)
         << e.what();

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral.hpp"
 #include "spectral/basis.hpp"
 
@@ -235,7 +236,7 @@ TEST(GlobalChain, SpacingFollowsCentroidsAndIsRefusedWhenItCollapses) {
   try {
     buildCrossSectionChain(curves, {});
     FAIL() << "coincident centroids accepted";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("curves 0 and 1 have the same centroid"),
               std::string::npos)
         << e.what();
@@ -245,7 +246,7 @@ TEST(GlobalChain, SpacingFollowsCentroidsAndIsRefusedWhenItCollapses) {
   EXPECT_NEAR(buildCrossSectionChain(curves, uniform).curveU[1], 0.5, 1e-15);
   CrossSectionOptions given;
   given.u = {0.0, 2.0, 1.0};
-  EXPECT_THROW(buildCrossSectionChain(curves, given), std::invalid_argument);
+  EXPECT_THROW(buildCrossSectionChain(curves, given), InvalidArgument);
 }
 
 /// Short patches: the series basis (basis.hpp) is y_k with y_k^(j)(0) = δ_jk, which the

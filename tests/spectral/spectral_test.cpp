@@ -11,6 +11,7 @@
 #include <functional>
 #include <vector>
 
+#include "pdesurf/error.hpp"
 #include "pdesurf/spectral.hpp"
 #include "support/mesh_checks.hpp"
 
@@ -405,7 +406,7 @@ TEST(SpectralPatch, TooIllConditionedModesAreRefusedNotReturned) {
     const SpectralPatch p = solveSpectral(SpectralOperator::ugail(20, 10.0), positions(curves),
                                           {6, UPlacement::Uniform});
     EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);  // if it solves, it must be right
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("do not determine mode 1"), std::string::npos) << e.what();
   }
 }
@@ -578,7 +579,7 @@ void expectError(const std::function<void()>& f, const std::string& fragment) {
   try {
     f();
     ADD_FAILURE() << "no error, expected one mentioning '" << fragment << "'";
-  } catch (const std::invalid_argument& e) {
+  } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
   }
 }

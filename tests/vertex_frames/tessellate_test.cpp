@@ -5,6 +5,7 @@
 #include <random>
 
 #include "pdesurf/analysis.hpp"
+#include "pdesurf/error.hpp"
 #include "pdesurf/vertex_frames.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/models.hpp"
@@ -199,7 +200,7 @@ TEST(Tessellate, RefusesMeshesBeyond32BitIndicesBeforeAllocating) {
   o.rows = 15;
   o.cols = 20;  // 300 frames × 4095² inner points > 2³² vertices
   const VertexFrameSurface s = solve(latticeModel(o, rng));
-  EXPECT_THROW(tessellate(s, {4097}), std::length_error);
+  EXPECT_THROW(tessellate(s, {4097}), InvalidArgument);
   EXPECT_NO_THROW(tessellate(s, {5}));
 }
 
