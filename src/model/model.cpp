@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "pdesurf/method.hpp"
+#include "pdesurf/model_error.hpp"
 
 namespace pdesurf {
 
@@ -67,6 +68,19 @@ void checkSolveOptions(const AnyModel& model, const SolveOptions& options) {
 void SurfaceMethod::checkSolveOptions(const AnyModel&, const SolveOptions&) const {}
 
 void SurfaceMethod::checkTransform(const AnyModel&, const AffineMap&) const {}
+
+ModelEdit SurfaceMethod::parseEdit(std::string_view, const AnyModel&) const {
+  throw ModelError("edit", "$.op", fmt::format("{} models take no edits", typeName()));
+}
+
+EditResult SurfaceMethod::applyEdit(const EditContext&, const ModelEdit&) const {
+  throw std::logic_error(
+      fmt::format("SurfaceMethod::applyEdit: {} models take no edits", typeName()));
+}
+
+std::shared_ptr<const FrameTopology> SurfaceMethod::topology(const AnyModel&) const {
+  return nullptr;
+}
 
 Mesh tessellate(const SolvedModel& solved, const TessellateOptions& options) {
   return solved.surface().tessellate(options);
@@ -149,6 +163,6 @@ NurbsModel toNurbs(const SolvedModel& solved, const NurbsExportOptions& options)
 
 ModelOverlay overlay(const SolvedModel& solved) { return solved.surface().overlay(); }
 
-bool hasEditableParts(const AnyModel& model) { return model.method().editsParts(); }
+bool hasEditableParts(const AnyModel& model) { return model.method().hasEditableParts(); }
 
 }  // namespace pdesurf
