@@ -56,9 +56,9 @@ Json Document::openedStatus() const {
 }
 
 void Document::requireEditable() const {
-  if (!session_->editable())
+  if (!session_->hasEditableParts())
     fail(409, fmt::format("{} models have no vertex frames: this is for vertex-frame models "
-                          "(their curves take shape edits, the whole model POST /api/transform)",
+                          "(their edits are POST /api/edit's, the whole model POST /api/transform)",
                           modelTypeName(session_->model())));
 }
 
@@ -96,7 +96,7 @@ void Document::open(const fs::path& path, const std::string& source) {
 
 std::string Document::modelText() const {
   std::string text = serializeModel(session_->model());
-  if (session_->editable()) return text;
+  if (session_->hasEditableParts()) return text;
   if (text == fileModel_) return fileText_;
   // Shape edits undone after a save: the model as opened is written as its file was.
   return text == openedModel_ ? openedText_ : text;
@@ -119,12 +119,11 @@ void Document::autosave() {
 
 void Document::save(const fs::path& path) {
   try {
-    // An untransformed view-only model is saved as its file was (save as: a copy).
-    // Fields the editor does not hold ("description", ...) are kept from a vertex-frame
-    // model's file (keepUnknownFields knows that type's fields; the other types are saved
-    // as their files were unless transformed).
-    const std::string text =
-        session_->frames() ? keepUnknownFields(modelText(), fileText_) : modelText();
+    // A model as its file holds it is saved as the file was (save as: a copy); else the
+    // fields of the file the model's method does not hold ("description", a frame's or a
+    // tool's own fields) are kept, matched by identity (keepUnknownFields), for every type.
+    std::string text = modelText();
+    if (text != fileText_) text = keepUnknownFields(text, fileText_);
     writeFileAtomically(path.string(), text);
     fileText_ = text;
     fileModel_ = serializeModel(session_->model());

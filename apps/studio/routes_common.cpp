@@ -71,7 +71,7 @@ SolveOptions solveOptions(const httplib::Request& req, const Document& document)
       fail(400, fmt::format("solver: expected \"global\" or \"local\", found \"{}\"", s));
   }
   const ModelSession& session = document.session();
-  if (req.has_param("seed") && session.editable()) {
+  if (req.has_param("seed") && session.hasEditableParts()) {
     const auto frames = static_cast<std::uint32_t>(session.frames()->frames.size());
     o.seedFrame = parseUint(req.get_param_value("seed"), 0, frames - 1, "seed");
   }

@@ -18,9 +18,9 @@ void addModelRoutes(const Studio& studio) {
   studio.server.Get("/api/model",
                     studio.guarded([&doc](const httplib::Request&, httplib::Response& res) {
                       Json out = doc.openedStatus();
-                      out["editable"] = doc.session().editable();
+                      out["editable"] = doc.session().hasEditableParts();
                       out["model"] = Json::parse(doc.modelText());
-                      if (!doc.session().editable()) {
+                      if (!doc.session().hasEditableParts()) {
                         out["view"] = doc.viewCurves();
                         out["dragAdvice"] = dragAdvice(doc.session().model());
                       }
@@ -29,14 +29,9 @@ void addModelRoutes(const Studio& studio) {
 
   studio.server.Post("/api/edit", studio.guarded([&studio, &doc](const httplib::Request& req,
                                                                  httplib::Response& res) {
+    // Every type's edits through one parse and one apply (its method's: edit_io.hpp).
     ModelSession& session = doc.session();
-    // Spectral, cross-section and B-spline PDE models take shape edits (session.hpp).
-    std::optional<GroupedShapeEdit> shape;
-    if (!session.editable() && takesShapeEdits(session.model()))
-      shape = parseShapeEdit(req.body, session.model());
-    else
-      doc.requireEditable();
-    const GroupedEdit edit = shape ? GroupedEdit{} : parseEdit(req.body, *session.frames());
+    const ModelEdit edit = parseEdit(req.body, session.model());
     // `?mesh=1` (and the mesh's parameters): the mesh after the edit, with the status in
     // X-Status: one round trip for a drag step instead of two.
     std::optional<MeshRequest> mesh;
@@ -45,10 +40,7 @@ void addModelRoutes(const Studio& studio) {
         fail(400, fmt::format("mesh: expected 1, found \"{}\"", req.get_param_value("mesh")));
       mesh = meshRequest(req, doc);
     }
-    if (shape)
-      session.apply(shape->edit, shape->group);
-    else
-      session.apply(edit.edit, edit.group);
+    session.apply(edit);
     doc.autosave();
     if (mesh) {
       sendMesh(studio, *mesh, res);
@@ -68,7 +60,6 @@ void addModelRoutes(const Studio& studio) {
 
   studio.server.Post("/api/end-group",
                      studio.guarded([&doc](const httplib::Request&, httplib::Response& res) {
-                       if (!takesShapeEdits(doc.session().model())) doc.requireEditable();
                        doc.session().endGroup();
                        sendJson(res, doc.status());
                      }));

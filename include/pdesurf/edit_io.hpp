@@ -12,7 +12,14 @@
 
 namespace pdesurf {
 
-/// Parses and validates an edit against `model`: JSON such as
+/// Parses and validates an edit of `model`, of any type, by its method
+/// (SurfaceMethod::parseEdit): the one parse of every edit, for ModelSession::apply. The
+/// ops each built-in method takes are parseFrameEdit's and parseShapeEdit's below. Throws
+/// ModelError with source "edit" and the JSON path of the problem.
+ModelEdit parseEdit(std::string_view json, const AnyModel& model);
+
+/// Parses and validates an edit of a vertex-frame model (the method's own parse): JSON such
+/// as
 ///   {"op": "move-vertex", "vertex": 3, "position": [0, 1, 2], "group": "drag-7"}
 ///   {"op": "move-vertices", "vertices": [3, 4], "positions": [[0, 1, 2], [1, 1, 2]]}
 ///   {"op": "set-parameters", "frames": [0, 2], "a1": [1, 1, 1], "a2": [2, 2, 2]}
@@ -35,10 +42,11 @@ namespace pdesurf {
 /// Everything the model parser would check of the result is checked (indices in range,
 /// finite numbers, regions, forces that have a solution with the frame's a1 and a2).
 /// Throws ModelError with source "edit" and the JSON path of the problem.
-GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model);
+GroupedEdit parseFrameEdit(std::string_view json, const VertexFrameModel& model);
 
 /// Parses and validates a shape edit of a spectral, cross-section or B-spline PDE model
-/// (session.hpp: ShapeEdit), with an optional "group" as parseEdit's:
+/// (session.hpp: ShapeEdit; those methods' own parse), with an optional "group" as
+/// parseFrameEdit's:
 ///   {"op": "move-curve-points", "curve": 2, "points": [0, 5], "positions": [[x, y, z], ...]}
 ///   {"op": "transform-curve", "curve": 1, "translate": [...], "rotate": {...}, "scale": s,
 ///    "center": [...], "from": "group-start"}  (the fields of parseTransform; "from", with a
@@ -53,7 +61,7 @@ GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model);
 /// "curve" is a condition's index (spectral), a section's (cross-sections) or a curve's name
 /// (bspline-pde: "uMin", "uMax", "vMin", "vMax", "uMinSecond", "vMinSecond", "start", "end").
 /// Throws ModelError with source "edit" and the JSON path of the problem; what the edit makes
-/// is checked when the session applies it (applyShapeEdit).
+/// is checked when the session applies it (the method's applyEdit).
 GroupedShapeEdit parseShapeEdit(std::string_view json, const AnyModel& model);
 
 /// Parses what a new model is (POST /api/new): {"kind": "single" | "grid" | "tube", "u": 3,

@@ -1,11 +1,14 @@
 // Surface methods: one description per method (vertex frames, spectral, cross-sections,
 // B-spline PDE, or one a program registers) that holds everything pdesurf does with a model
-// of that method: its type name, parse, serialise, solve, transform, report. The registry
+// of that method: its type name, parse, serialise, solve, transform, report, edits. The registry
 // finds a description by the "type" of a model file or by the C++ type of a model value.
 // docs/architecture.md says where the descriptions live and how a method is added.
 #pragma once
 
+#include <any>
+#include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <typeindex>
@@ -17,6 +20,58 @@
 #include "pdesurf/transform.hpp"
 
 namespace pdesurf {
+
+/// A model as an editing session (session.hpp: ModelSession) holds it: the model, its
+/// solution (null while it is not solved) and, for vertex frames, the frame topology its
+/// solves share.
+struct ModelState {
+  std::shared_ptr<const AnyModel> model;
+  std::shared_ptr<const SolvedModel> solved;
+  std::shared_ptr<const FrameTopology> topology;
+};
+
+/// An edit of a model as its method parsed it (SurfaceMethod::parseEdit): the method's own
+/// edit value, type-erased (vertex frames: Edit; spectral, cross-sections and B-spline PDE:
+/// ShapeEdit, both in session.hpp; a registered method: a type of its own), with its undo
+/// group: consecutive edits of one non-empty group (the steps of one drag) undo as one.
+struct ModelEdit {
+  std::any edit;
+  std::string group;
+
+  /// The edit's value as the method `type` takes it (its applyEdit); throws std::logic_error
+  /// when it is of another type (another method's edit).
+  template <class E>
+  const E& as(std::string_view type) const {
+    if (const E* e = std::any_cast<E>(&edit)) return *e;
+    // Not a pdesurf::Error: the caller's slip (an edit parsed against another model), not input.
+    throw std::logic_error(std::string("an edit of another method given to a ") +
+                           std::string(type) + " model");
+  }
+};
+
+/// What SurfaceMethod::applyEdit applies an edit to.
+struct EditContext {
+  /// The session's current state.
+  const ModelState& current;
+  /// The state before the first edit of the edit's group, while that group is open (null
+  /// outside a group and at its first edit): a drag's absolute steps apply to it.
+  const ModelState* groupStart = nullptr;
+  /// `current` solved (solved on the first call when it is not yet).
+  std::function<const SolvedModel&()> solved;
+  /// The name solver refusals give (ModelError's source).
+  const std::string& source;
+};
+
+/// What an edit makes (SurfaceMethod::applyEdit).
+struct EditResult {
+  /// The next state: its model; its solution when the method solved it (to check it; else
+  /// the session solves it as every model without editable parts is solved); its topology
+  /// when the edit changed the model's structure (null: the current one is kept).
+  ModelState next;
+  /// The edit is an undo step of its own whatever its group (a structure edit, a
+  /// whole-model transform).
+  bool ownStep = false;
+};
 
 /// One surface method. The built-in ones are in src/methods/; a program adds its own with
 /// registerMethod (tests/model/toy_method_test.cpp adds a bilinear Coons method).
@@ -57,9 +112,23 @@ class SurfaceMethod {
   /// the bounding box of a sample.
   virtual std::string info(const SolvedModel& solved, bool json) const;
 
-  /// Whether a session edits the model's parts (vertex frames) rather than its shape
-  /// (shape edits) or only whole (transforms). The default: no.
-  virtual bool editsParts() const { return false; }
+  /// Parses and validates an edit of `model` from its JSON ({"op": ..., "group": ...}, the
+  /// fields of the op: docs/studio.md). Errors are ModelError with source "edit" and the
+  /// JSON path. The default: the method takes no edits (a ModelError at "$.op").
+  virtual ModelEdit parseEdit(std::string_view json, const AnyModel& model) const;
+  /// Applies an edit parseEdit made (or a value of the method's edit type): the session's
+  /// one path for every edit. Throws ModelError naming what is wrong, the session then left
+  /// as it was. The default: throws std::logic_error (the method takes no edits).
+  virtual EditResult applyEdit(const EditContext& context, const ModelEdit& edit) const;
+  /// The structure a session keeps while edits leave it (vertex frames: the FrameTopology
+  /// their solves share), or null (the default).
+  virtual std::shared_ptr<const FrameTopology> topology(const AnyModel& model) const;
+
+  /// Whether the model has editable parts (vertex frames: vertices, frames, forces), which
+  /// the studio's frame tools edit and parseEdit checks fully: a session then solves the
+  /// model only when asked and keeps no solution for undo. Without them (the default) every
+  /// model a session makes is solved at once, its solver's refusal refusing the edit.
+  virtual bool hasEditableParts() const { return false; }
 };
 
 /// Adds a method to the registry, after the built-in ones. Throws InvalidArgument when

@@ -262,7 +262,7 @@ std::string modelDisplayName(const std::string& name, const std::string& path);
 /// "1 frame", "2 frames", "1 vertex", "3 vertices", "2 patches": a count and its noun.
 std::string countText(std::size_t n, const std::string& noun);
 
-/// Whether a session edits the model's parts (vertex frames) or only transforms it whole.
+/// Whether the model has editable parts (SurfaceMethod::hasEditableParts: vertex frames).
 bool hasEditableParts(const AnyModel& model);
 
 }  // namespace pdesurf

@@ -41,11 +41,13 @@ VertexFrameModel loadVertexFrameModel(const std::string& path);
 /// (numbers written shortest round-trip; defaults omitted).
 std::string serializeVertexFrameModel(const VertexFrameModel& model);
 
-/// `written` (serializeVertexFrameModel's text) with the fields of `original` (the file it
-/// was read from) that the model does not hold: top-level fields other than type, name,
-/// vertices, frames and forces ("description", a tool's own data), and, when both have as
-/// many frames, each frame's fields other than vertices, a1, a2 and forces; in the
-/// original's key order. `written` unchanged when `original` is not a JSON object.
+/// `written` (serializeModel's text of a model of any type read from `original`, then perhaps
+/// edited) with the fields of `original` that the model's method does not hold (what its
+/// writer does not write for the original's model: "description", a frame's or a tool's own
+/// fields), matched by identity: the same key path, and in an array the element the writer
+/// wrote unchanged (wherever it moved; else the one at its index while both arrays are as
+/// long); in the original's key order. `written` unchanged when it has no such field to
+/// keep, when `original` is not a model file, or when the kept fields would change the model.
 std::string keepUnknownFields(const std::string& written, std::string_view original);
 
 }  // namespace pdesurf

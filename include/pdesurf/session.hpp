@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "pdesurf/method.hpp"
 #include "pdesurf/model.hpp"
 #include "pdesurf/spectral.hpp"
 #include "pdesurf/transform.hpp"
@@ -150,10 +151,10 @@ struct GroupedEdit {
   std::string group;
 };
 
-// Edits of spectral, cross-section and B-spline PDE models (src/session/shape_edits.cpp,
-// parsed by parseShapeEdit in edit_io.hpp, src/io/shape_edit_io.cpp). Each names what it changes as
-// the model file does; the session checks the result as the file parser would and solves it,
-// refusing the edit (a ModelError with the reason, the session unchanged) when either fails.
+// Edits of spectral, cross-section and B-spline PDE models (ShapeEdit: parsed and applied by
+// their methods, src/methods/shape_edits.cpp). Each names what it changes as the model file
+// does; the method checks the result as the file parser would and solves it, refusing the
+// edit (a ModelError with the reason, the session unchanged) when either fails.
 
 /// A curve of a model: a spectral model's condition (`index`), a cross-section (`index`),
 /// or a B-spline PDE model's curve by its file name (`name`: "uMin", "uMax", "vMin", "vMax",
@@ -264,13 +265,6 @@ struct GroupedShapeEdit {
   ShapeEdit edit;
   std::string group;
 };
-/// Whether a model takes shape edits (spectral, cross-sections, bspline-pde).
-bool takesShapeEdits(const AnyModel& model);
-/// The model after a shape edit (parsed against it by parseShapeEdit), checked as its file
-/// would be (parseModel of its text). `solved` is `model` solved (AddSection samples it).
-/// Throws ModelError (source "edit") naming what is wrong.
-AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const ShapeEdit& edit);
-
 /// Points a section sampled from a chain's surface (AddSection) has at least.
 constexpr std::size_t kMinSampledSection = 16;
 
@@ -329,24 +323,20 @@ class UndoHistory {
   std::string group_;
 };
 
-/// An editing session on a model of any type: validated edits of its editable parts (vertex
-/// frames: vertices, a1/a2, forces, the frame structure; the other types: their curves, nets,
-/// spines and operators through shape edits), whole-model transforms of every type,
-/// undo and redo (a drag is one step), and the solved model cached per revision. Models without
-/// editable parts are solved whenever they change and kept with their solution, so undo and redo do
-/// not solve again; a vertex-frame model is solved on first use after each change, on a topology
-/// built again only when the frame structure changes.
+/// An editing session on a model of any type: its method's edits through one path (parsed by
+/// parseEdit, edit_io.hpp, applied by the method: vertex frames' vertices, a1/a2, forces and
+/// frame structure; the other types' curves, nets, spines and operators), whole-model
+/// transforms of every type, undo and redo (a drag is one step), and the solved model cached
+/// per revision. Models without editable parts are solved whenever they change and kept with
+/// their solution, so undo and redo do not solve again; a model with editable parts (vertex
+/// frames) is solved on first use after each change, on a topology built again only when the
+/// frame structure changes.
 class ModelSession {
  public:
   /// One undo step holds the model as it was and, for a model without editable parts, its
-  /// solution (both shared, never copied by undo or redo).
-  struct State {
-    std::shared_ptr<const AnyModel> model;
-    std::shared_ptr<const SolvedModel> solved;
-    /// Vertex frames: the frame structure, kept while edits leave it alone (shared, so a
-    /// drag re-solves and re-tessellates on the same layout) and new after a structure edit.
-    std::shared_ptr<const FrameTopology> topology;
-  };
+  /// solution (both shared, never copied by undo or redo); vertex frames' topology is kept
+  /// while edits leave the structure alone (shared: a drag re-solves on the same layout).
+  using State = ModelState;
   /// At most this many undo steps are kept.
   static constexpr std::size_t kMaxUndo = UndoHistory<State>::kMaxUndo;
 
@@ -355,25 +345,29 @@ class ModelSession {
   explicit ModelSession(AnyModel model, std::string source = "model");
 
   const AnyModel& model() const { return *current_.model; }
-  /// The editable vertex-frame model, or nullptr for the other types (they take shape edits
-  /// and whole-model transforms).
+  /// The vertex-frame model, or nullptr for the other types: a type branch kept for the
+  /// studio's frame routes (patch queries, boundaries, forces) and the tests, which read
+  /// vertex frames' own data; edits go through apply, whatever the type.
   const VertexFrameModel* frames() const { return model().as<VertexFrameModel>(); }
-  bool editable() const { return frames() != nullptr; }
+  /// Whether the model has editable parts (SurfaceMethod::hasEditableParts: vertex frames).
+  bool hasEditableParts() const { return pdesurf::hasEditableParts(model()); }
   /// Increases with every change of the model (edit, transform, undo, redo).
   std::uint64_t revision() const { return revision_; }
 
-  /// Applies a valid edit (validate with parseEdit first); edits other than TransformModel
-  /// need editable(). A transform goes through transform(). A structure edit whose result
-  /// is invalid throws ModelError (restructure) and leaves the session as it was.
+  /// Applies an edit of the model's method (parseEdit's, edit_io.hpp): the one path of every
+  /// edit of every type, by the method's applyEdit. An edit whose result is invalid (a
+  /// structure edit restructure refuses, a shape edit the file parser or the solver refuses)
+  /// throws ModelError and leaves the session as it was. Edits of one non-empty group undo
+  /// as one step; an edit the method makes a step of its own ends the group.
+  void apply(const ModelEdit& edit);
+  /// The built-in methods' edits given as values (programs, tests): apply({edit, group}).
+  /// A TransformCurve from the group's start applies to the model as it was before `group`'s
+  /// first edit (the current model when none came yet).
   void apply(const Edit& edit, std::string_view group = {});
+  void apply(const ShapeEdit& edit, std::string_view group = {});
   /// Moves, turns or scales the model (one undo step). An invalid result (checkTransform)
   /// or a solver refusal throws ModelError and leaves the session as it was.
   void transform(const AffineMap& map);
-  /// Applies a shape edit (spectral, cross-section, B-spline PDE models: takesShapeEdits):
-  /// the result checked and solved first (ModelError: the session as it was), grouped as
-  /// apply's edits are. A TransformCurve from the group's start applies to the model as it
-  /// was before `group`'s first edit (the current model when none came yet).
-  void apply(const ShapeEdit& edit, std::string_view group = {});
   bool undo();
   bool redo();
   std::size_t undoDepth() const { return history_.undoDepth(); }

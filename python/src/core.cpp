@@ -599,15 +599,9 @@ void bindCore(py::module_& m) {
       .def(
           "apply",
           [](ModelSession& self, const py::object& edit) {
-            const std::string text = jsonText(edit, "edit");
-            if (self.editable()) {
-              const GroupedEdit e = parseEdit(text, *self.frames());
-              self.apply(e.edit, e.group);
-            } else {
-              const GroupedShapeEdit e = parseShapeEdit(text, self.model());
-              py::gil_scoped_release release;
-              self.apply(e.edit, e.group);
-            }
+            const ModelEdit e = parseEdit(jsonText(edit, "edit"), self.model());
+            py::gil_scoped_release release;
+            self.apply(e);
           },
           py::arg("edit"),
           "Applies an edit (JSON text or a dict): vertex frames take move-vertex,\n"

@@ -2,6 +2,7 @@
 #include "pdesurf/edit_io.hpp"
 #include "io/json_reader.hpp"
 #include "io/model_reader.hpp"
+#include "pdesurf/method.hpp"
 
 #include <optional>
 
@@ -130,7 +131,11 @@ std::optional<Edit> parseStructureEdit(const Reader& rd, const Json& doc, const 
 
 }  // namespace
 
-GroupedEdit parseEdit(std::string_view json, const VertexFrameModel& model) {
+ModelEdit parseEdit(std::string_view json, const AnyModel& model) {
+  return model.method().parseEdit(json, model);
+}
+
+GroupedEdit parseFrameEdit(std::string_view json, const VertexFrameModel& model) {
   const detail::ModelReader rd("edit");
   const auto [doc, group, name] = rd.edit(json);
   GroupedEdit out;

@@ -118,40 +118,74 @@ std::string serializeVertexFrameModel(const VertexFrameModel& model) {
 
 namespace {
 
-/// `out` with the keys of `in` that are not in `known` added, in `in`'s key order (the keys
-/// only `out` has follow).
-detail::ModelJson mergeUnknown(const detail::ModelJson& out, const detail::ModelJson& in,
-                               std::initializer_list<std::string_view> known) {
-  const auto isKnown = [&](const std::string& key) {
-    return std::find(known.begin(), known.end(), key) != known.end();
-  };
-  detail::ModelJson merged = detail::ModelJson::object();
-  for (const auto& [key, value] : in.items()) {
-    if (!isKnown(key))
-      merged[key] = value;
-    else if (out.contains(key))
-      merged[key] = out[key];
+using detail::ModelJson;
+
+/// `out` (the written value at one key path) with the fields of `in` (the original file's
+/// value at that path) that `known` (the writer's text of the original's model there) lacks:
+/// fields the method does not hold, in `in`'s key order (the keys only `out` has follow).
+/// Array elements are matched by identity: an element of `out` takes the unknown fields of
+/// the original element the writer wrote exactly as `out` holds it (unchanged, wherever it
+/// moved), else, when both arrays are as long, of the element at its index.
+ModelJson mergeUnknown(const ModelJson& out, const ModelJson& in, const ModelJson* known) {
+  if (out.is_object() && in.is_object()) {
+    ModelJson merged = ModelJson::object();
+    for (const auto& [key, value] : in.items()) {
+      const ModelJson* k = known && known->contains(key) ? &(*known)[key] : nullptr;
+      if (out.contains(key))
+        merged[key] = mergeUnknown(out[key], value, k);
+      else if (!k)
+        merged[key] = value;  // a field the method does not hold
+      // else: a field the method holds and no longer writes (the edit removed it)
+    }
+    for (const auto& [key, value] : out.items())
+      if (!merged.contains(key)) merged[key] = value;
+    return merged;
   }
-  for (const auto& [key, value] : out.items())
-    if (!merged.contains(key)) merged[key] = value;
-  return merged;
+  // Only arrays of objects hold fields (points and indices do not).
+  const auto holdsObjects = [](const ModelJson& a) {
+    return std::any_of(a.begin(), a.end(), [](const ModelJson& e) { return e.is_object(); });
+  };
+  if (out.is_array() && in.is_array() && known && known->is_array() && known->size() == in.size() &&
+      holdsObjects(in)) {
+    ModelJson merged = out;
+    std::vector<bool> taken(in.size(), false);
+    for (std::size_t j = 0; j < out.size(); ++j) {
+      // The element at the same index first: an array an edit left alone matches in one pass.
+      std::size_t match = j < in.size() && !taken[j] && (*known)[j] == out[j] ? j : in.size();
+      for (std::size_t i = 0; i < in.size() && match == in.size(); ++i)
+        if (!taken[i] && (*known)[i] == out[j]) match = i;
+      if (match == in.size() && out.size() == in.size() && !taken[j]) match = j;
+      if (match == in.size()) continue;
+      taken[match] = true;
+      merged[j] = mergeUnknown(out[j], in[match], &(*known)[match]);
+    }
+    return merged;
+  }
+  return out;
 }
 
 }  // namespace
 
 std::string keepUnknownFields(const std::string& written, std::string_view original) {
-  using detail::ModelJson;
   const ModelJson in = ModelJson::parse(original, nullptr, false);
   if (in.is_discarded() || !in.is_object()) return written;
-  ModelJson out = ModelJson::parse(written);
-  out = mergeUnknown(out, in, {"type", "name", "vertices", "frames", "forces"});
-  const auto frames = in.find("frames");
-  if (frames != in.end() && frames->is_array() && out["frames"].size() == frames->size())
-    for (std::size_t f = 0; f < frames->size(); ++f)
-      if ((*frames)[f].is_object())
-        out["frames"][f] =
-            mergeUnknown(out["frames"][f], (*frames)[f], {"vertices", "a1", "a2", "forces"});
-  return detail::writeModelJson(out);
+  ModelJson known;
+  try {
+    known = ModelJson::parse(serializeModel(parseModel(original, "original")));
+  } catch (const ModelError&) {
+    return written;  // not a model file: nothing is known to be unknown
+  }
+  const ModelJson out = ModelJson::parse(written);
+  const ModelJson merged = mergeUnknown(out, in, &known);
+  if (merged == out) return written;  // no unknown fields: the writer's text as it is
+  std::string text = detail::writeModelJson(merged);
+  // The fields kept must not change the model (a field a method reads only in some forms).
+  try {
+    if (serializeModel(parseModel(text, "merged")) == serializeModel(parseModel(written, "w")))
+      return text;
+  } catch (const ModelError&) {
+  }
+  return written;
 }
 
 }  // namespace pdesurf

@@ -54,10 +54,11 @@ class SolvedBSplineSurface final
 };
 
 class BSplinePdeMethod final
-    : public OptionlessMethod<BSplinePdeModel, SolvedBSplinePde, SolvedBSplineSurface> {
+    : public ShapeEditedMethod<
+          OptionlessMethod<BSplinePdeModel, SolvedBSplinePde, SolvedBSplineSurface>> {
  public:
   BSplinePdeMethod()
-      : OptionlessMethod("bspline-pde", parseBSplinePdeDocument, solveBSplineModel) {}
+      : ShapeEditedMethod("bspline-pde", parseBSplinePdeDocument, solveBSplineModel) {}
 
   ModelReport report(const SolvedModel& solved) const override {
     return bsplineReport(solved.surface().get<SolvedBSplinePde>());

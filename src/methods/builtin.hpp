@@ -6,6 +6,8 @@
 #include <typeindex>
 #include <vector>
 
+#include "methods/shape_edits.hpp"
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/method.hpp"
 
 namespace pdesurf::detail {
@@ -35,8 +37,8 @@ class OptionlessMethod : public MethodOf<Model> {
  public:
   using Parse = Model (*)(const nlohmann::json&, const std::string&);
   using Solve = Solved (*)(const Model&, const std::string&);
-  OptionlessMethod(const char* type, Parse parse, Solve solve)
-      : type_(type), parse_(parse), solve_(solve) {}
+  OptionlessMethod(const char* type, Parse parseFile, Solve solveModel)
+      : type_(type), parse_(parseFile), solve_(solveModel) {}
 
   const char* typeName() const override { return type_; }
   AnyModel parse(const nlohmann::json& document, const std::string& source) const override {
@@ -55,6 +57,21 @@ class OptionlessMethod : public MethodOf<Model> {
   const char* type_;
   Parse parse_;
   Solve solve_;
+};
+
+/// A method whose edits are shape edits (ShapeEdit, session.hpp: its curves, nets, spines
+/// and operators): spectral, cross-sections, B-spline PDE (shape_edits.cpp).
+template <class Base>
+class ShapeEditedMethod : public Base {
+ public:
+  using Base::Base;
+  ModelEdit parseEdit(std::string_view json, const AnyModel& model) const override {
+    GroupedShapeEdit e = parseShapeEdit(json, model);
+    return {std::move(e.edit), std::move(e.group)};
+  }
+  EditResult applyEdit(const EditContext& context, const ModelEdit& edit) const override {
+    return applyShapeEdit(context, edit);
+  }
 };
 
 /// points[j*n+i] = f(i, j): a patch's samples.

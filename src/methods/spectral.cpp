@@ -84,11 +84,12 @@ class SolvedSpectralSurface final : public SolvedSurfaceOf<SolvedSpectral> {
 /// "spectral" (SpectralModel) and "cross-sections" (CrossSectionModel): the same solved
 /// surface and reports.
 template <class Model>
-class SpectralMethod final : public OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface> {
+class SpectralMethod final
+    : public ShapeEditedMethod<OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface>> {
  public:
-  using Base = OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface>;
-  SpectralMethod(const char* type, typename Base::Parse parse)
-      : Base(type, parse, solveSpectralModel) {}
+  using Base = ShapeEditedMethod<OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface>>;
+  SpectralMethod(const char* type, typename Base::Parse parseFile)
+      : Base(type, parseFile, solveSpectralModel) {}
 
   ModelReport report(const SolvedModel& solved) const override {
     return spectralReport(solved.surface().get<SolvedSpectral>());

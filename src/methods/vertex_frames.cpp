@@ -1,5 +1,6 @@
 // The "vertex-frames" method (include/pdesurf/method.hpp): its description, its solved
-// surface (VertexFrameSurface), its reports.
+// surface (VertexFrameSurface), its reports, its edits (Edit, session.hpp: parsed by
+// parseFrameEdit, the structure edits made by restructure).
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -9,6 +10,7 @@
 #include "pdesurf/edit_io.hpp"
 #include "pdesurf/error.hpp"
 #include "pdesurf/model_io.hpp"
+#include "pdesurf/session.hpp"
 
 namespace pdesurf::detail {
 
@@ -92,6 +94,37 @@ class SolvedFrames final
   const std::vector<std::string>& notes() const override { return value_.notes; }
 };
 
+/// The model after an edit that keeps the frame structure: the vertices, a1/a2 or forces set.
+VertexFrameModel withPartsSet(VertexFrameModel next, const Edit& edit) {
+  std::visit(
+      [&](const auto& e) {
+        using T = std::decay_t<decltype(e)>;
+        if constexpr (std::is_same_v<T, MoveVertex>) {
+          next.vertices[e.vertex] = e.position;
+        } else if constexpr (std::is_same_v<T, MoveVertices>) {
+          for (std::size_t i = 0; i < e.vertices.size(); ++i)
+            next.vertices[e.vertices[i]] = e.positions[i];
+        } else if constexpr (std::is_same_v<T, SetParameters>) {
+          for (std::uint32_t k : e.frames) {
+            if (e.a1) next.frames[k].a1 = *e.a1;
+            if (e.a2) next.frames[k].a2 = *e.a2;
+          }
+        } else if constexpr (std::is_same_v<T, SetFrameForces>) {
+          next.frames[e.frame].forces = e.forces;
+        } else if constexpr (std::is_same_v<T, SetSharedForces>) {
+          next.forces = e.forces;
+        } else {
+          static_assert(std::is_same_v<T, TransformModel> || std::is_same_v<T, ExtrudeEdges> ||
+                        std::is_same_v<T, AddFrame> || std::is_same_v<T, DeleteFrames> ||
+                        std::is_same_v<T, SplitFrame> || std::is_same_v<T, WeldVertices> ||
+                        std::is_same_v<T, WeldEdges> || std::is_same_v<T, FlipFrames> ||
+                        std::is_same_v<T, MirrorFrames>);
+        }
+      },
+      edit);
+  return next;
+}
+
 class VertexFramesMethod final : public MethodOf<VertexFrameModel> {
  public:
   const char* typeName() const override { return "vertex-frames"; }
@@ -125,7 +158,32 @@ class VertexFramesMethod final : public MethodOf<VertexFrameModel> {
     return frameInfo(solved, solved.model().get<VertexFrameModel>(),
                      solved.surface().get<VertexFrameSurface>(), json);
   }
-  bool editsParts() const override { return true; }
+  ModelEdit parseEdit(std::string_view json, const AnyModel& model) const override {
+    GroupedEdit e = parseFrameEdit(json, model.get<VertexFrameModel>());
+    return {std::move(e.edit), std::move(e.group)};
+  }
+  EditResult applyEdit(const EditContext& context, const ModelEdit& edit) const override {
+    const AnyModel& model = *context.current.model;
+    const Edit& e = edit.as<Edit>(typeName());
+    if (const auto* t = std::get_if<TransformModel>(&e)) {
+      pdesurf::checkTransform(model, t->map);
+      return {{std::make_shared<const AnyModel>(transformModel(model, t->map)), nullptr, nullptr},
+              true};
+    }
+    const auto& frames = model.get<VertexFrameModel>();
+    if (changesStructure(e)) {
+      const VertexFrameSurface& surface = *context.solved().frames();
+      auto next = restructure(frames, *context.current.topology, surface, e);  // may throw
+      auto topology = std::make_shared<const FrameTopology>(buildTopology(next));
+      return {{std::make_shared<const AnyModel>(std::move(next)), nullptr, std::move(topology)},
+              true};
+    }
+    return {{std::make_shared<const AnyModel>(withPartsSet(frames, e)), nullptr, nullptr}};
+  }
+  std::shared_ptr<const FrameTopology> topology(const AnyModel& model) const override {
+    return std::make_shared<const FrameTopology>(buildTopology(model.get<VertexFrameModel>()));
+  }
+  bool hasEditableParts() const override { return true; }
 };
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "pdesurf/error.hpp"
 #include "pdesurf/method.hpp"
+#include "pdesurf/model_error.hpp"
 
 namespace pdesurf {
 
@@ -68,6 +69,20 @@ void checkSolveOptions(const AnyModel& model, const SolveOptions& options) {
 void SurfaceMethod::checkSolveOptions(const AnyModel&, const SolveOptions&) const {}
 
 void SurfaceMethod::checkTransform(const AnyModel&, const AffineMap&) const {}
+
+ModelEdit SurfaceMethod::parseEdit(std::string_view, const AnyModel&) const {
+  throw ModelError("edit", "$.op", fmt::format("{} models take no edits", typeName()));
+}
+
+EditResult SurfaceMethod::applyEdit(const EditContext&, const ModelEdit&) const {
+  // Not a pdesurf::Error: the caller's slip (parseEdit refused every edit of this method).
+  throw std::logic_error(
+      fmt::format("SurfaceMethod::applyEdit: {} models take no edits", typeName()));
+}
+
+std::shared_ptr<const FrameTopology> SurfaceMethod::topology(const AnyModel&) const {
+  return nullptr;
+}
 
 Mesh tessellate(const SolvedModel& solved, const TessellateOptions& options) {
   return solved.surface().tessellate(options);
@@ -150,6 +165,6 @@ NurbsModel toNurbs(const SolvedModel& solved, const NurbsExportOptions& options)
 
 ModelOverlay overlay(const SolvedModel& solved) { return solved.surface().overlay(); }
 
-bool hasEditableParts(const AnyModel& model) { return model.method().editsParts(); }
+bool hasEditableParts(const AnyModel& model) { return model.method().hasEditableParts(); }
 
 }  // namespace pdesurf

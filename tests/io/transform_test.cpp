@@ -289,7 +289,7 @@ TEST(TransformSpectral, WrittenModelsReadBackToTheSameModel) {
 
 TEST(TransformSpectral, SessionTransformsUndoesAndRedoes) {
   ModelSession session(parseModel(kTube, "tube"), "tube");
-  EXPECT_FALSE(session.editable());
+  EXPECT_FALSE(session.hasEditableParts());
   const std::string original = serializeModel(session.model());
   const Vec3 before = session.solved().spectral()->patchAt(0).position(0.5, 1.0);
   const AffineMap map = AffineMap::translationBy({0, 0, 2});

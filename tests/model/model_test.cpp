@@ -104,7 +104,7 @@ TEST(Model, TessellatorKeepsItsLayoutUntilTheTrianglesChange) {
 // (session.cpp once built an empty SolvedSpectral tagged "bspline-pde").
 TEST(ModelSession, BSplineModelsAreSolvedAsThemselvesAndTransformWithUndo) {
   ModelSession session(loadModel(example("bspline-dome.json")), "dome");
-  EXPECT_FALSE(session.editable());
+  EXPECT_FALSE(session.hasEditableParts());
   EXPECT_EQ(session.solved().spectral(), nullptr);
   const auto* solved = session.solved().surface().as<SolvedBSplinePde>();
   ASSERT_NE(solved, nullptr);

@@ -1,8 +1,9 @@
 // The proof that a surface method is one description (include/pdesurf/method.hpp): a toy
 // fifth method, bilinear Coons patches (four corner points a patch), defined and registered
 // here in the test tree only. Parse, solve, tessellate, sample, serialise, info, NURBS
-// faces, a session's whole-model transform with undo, and the CLI's build, info, sample and
-// export (run in-process) all work on it with no library or CLI file knowing it.
+// faces, a session's whole-model transform with undo, an edit of the toy's own kind through
+// the session's one edit path (parsed from JSON, applied, undone), and the CLI's build, info,
+// sample and export (run in-process) all work on it with no library or CLI file knowing it.
 #include <array>
 #include <cstdio>
 #include <string>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/error.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/method.hpp"
@@ -70,6 +72,12 @@ class SolvedCoonsToy final : public SolvedSurfaceOf<CoonsToyModel> {
   double largestC0Gap() const override { return 0.0; }
 };
 
+/// The toy's one edit: {"op": "move-corner", "patch": k, "corner": c, "position": [x, y, z]}.
+struct MoveCorner {
+  std::size_t patch = 0, corner = 0;
+  Vec3 position = Vec3::Zero();
+};
+
 class CoonsToyMethod final : public SurfaceMethod {
  public:
   const char* typeName() const override { return "bilinear-coons"; }
@@ -120,6 +128,23 @@ class CoonsToyMethod final : public SurfaceMethod {
     for (auto& patch : out.patches)
       for (Vec3& p : patch) p = map.point(p);
     return out;
+  }
+  ModelEdit parseEdit(std::string_view json, const AnyModel& model) const override {
+    const auto doc = nlohmann::json::parse(json);
+    if (doc.value("op", "") != "move-corner")
+      throw ModelError("edit", "$.op", "the toy takes move-corner alone");
+    MoveCorner e{doc.at("patch").get<std::size_t>(), doc.at("corner").get<std::size_t>()};
+    if (e.patch >= model.get<CoonsToyModel>().patches.size() || e.corner >= 4)
+      throw ModelError("edit", "$.patch", "no such corner");
+    const auto xyz = doc.at("position").get<std::array<double, 3>>();
+    e.position = Vec3(xyz[0], xyz[1], xyz[2]);
+    return {e, doc.value("group", "")};
+  }
+  EditResult applyEdit(const EditContext& context, const ModelEdit& edit) const override {
+    const auto& e = edit.as<MoveCorner>(typeName());
+    CoonsToyModel next = context.current.model->get<CoonsToyModel>();
+    next.patches[e.patch][e.corner] = e.position;
+    return {{std::make_shared<const AnyModel>(std::move(next)), nullptr, nullptr}};
   }
 };
 
@@ -227,6 +252,30 @@ TEST(ToyMethod, SessionTransformsAndUndoes) {
             kRounding);
   ASSERT_TRUE(session.undo());
   EXPECT_EQ(session.solved().surface().evaluate(1, 0.5, 0.5).p, before);
+}
+
+TEST(ToyMethod, SessionAppliesItsOwnEditAndUndoesIt) {
+  registerToy();
+  ModelSession session(parseModel(kToyText, "toy.json"), "toy.json");
+  const std::string before = serializeModel(session.model());
+  // A drag of the shared corner's copy in patch 1 in two steps of one group: one undo step.
+  for (const char* z : {"0.5", "1"})
+    session.apply(parseEdit(
+        std::string(R"({"op": "move-corner", "patch": 1, "corner": 0, "position": [1, 0, )") + z +
+            R"(], "group": "drag"})",
+        session.model()));
+  EXPECT_EQ(session.undoDepth(), 1u);
+  // The session solved the edited model: patch 1's corner (u, v) = (0, 0) is where it went.
+  EXPECT_LT((session.solved().surface().evaluate(1, 0.0, 0.0).p - Vec3(1, 0, 1)).norm(), kRounding);
+  // Another method's edit and an unknown op are refused, the session unchanged.
+  EXPECT_THROW(session.apply(MoveVertex{0, Vec3::Zero()}), std::logic_error);
+  EXPECT_THROW(parseEdit(R"({"op": "move-vertex"})", session.model()), ModelError);
+  EXPECT_EQ(session.undoDepth(), 1u);
+  ASSERT_TRUE(session.undo());
+  EXPECT_EQ(serializeModel(session.model()), before);
+  EXPECT_EQ(session.solved().surface().evaluate(1, 0.0, 0.0).p, Vec3(1, 0, 0));
+  ASSERT_TRUE(session.redo());
+  EXPECT_EQ(session.model().get<CoonsToyModel>().patches[1][0], Vec3(1, 0, 1));
 }
 
 /// Runs the CLI in-process; its standard output.

@@ -13,12 +13,12 @@
 
 #include <fmt/format.h>
 
+#include "methods/curve_target.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/edit_io.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
-#include "session/curve_target.hpp"
 #include "support/examples.hpp"
 
 namespace pdesurf {
@@ -165,12 +165,9 @@ std::vector<Drag> dragsOf(const AnyModel& model, const Vec3& step) {
 }
 
 void apply(ModelSession& s, const std::string& json) {
-  if (s.editable()) {
-    s.apply(parseEdit(json, *s.frames()).edit, "drag");
-  } else {
-    const GroupedShapeEdit e = parseShapeEdit(json, s.model());
-    s.apply(e.edit, "drag");
-  }
+  ModelEdit e = parseEdit(json, s.model());
+  e.group = "drag";
+  s.apply(e);
 }
 
 TEST(Locality, EveryHandleOfEveryExampleMovesTheSurfaceLocallyAndBoundedly) {

@@ -1,11 +1,15 @@
 // Editing sessions and edit parsing.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <random>
+
+#include <nlohmann/json.hpp>
 
 #include "pdesurf/edit_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
+#include "support/examples.hpp"
 #include "support/models.hpp"
 
 namespace pdesurf {
@@ -23,7 +27,7 @@ VertexFrameModel grid() {
 std::string problemOf(std::string_view json, const VertexFrameModel& m,
                       std::string* path = nullptr) {
   try {
-    parseEdit(json, m);
+    parseFrameEdit(json, m);
   } catch (const ModelError& e) {
     if (path) *path = e.jsonPath();
     return e.problem();
@@ -33,17 +37,18 @@ std::string problemOf(std::string_view json, const VertexFrameModel& m,
 
 TEST(Edits, ParseEveryKind) {
   const VertexFrameModel m = grid();
-  auto move = parseEdit(R"({"op":"move-vertex","vertex":3,"position":[1,2,3],"group":"g"})", m);
+  auto move =
+      parseFrameEdit(R"({"op":"move-vertex","vertex":3,"position":[1,2,3],"group":"g"})", m);
   EXPECT_EQ(move.group, "g");
   EXPECT_EQ(std::get<MoveVertex>(move.edit).position, Vec3(1, 2, 3));
-  auto params = parseEdit(R"({"op":"set-parameters","frames":[0,2],"a2":[2,2,2]})", m);
+  auto params = parseFrameEdit(R"({"op":"set-parameters","frames":[0,2],"a2":[2,2,2]})", m);
   EXPECT_FALSE(std::get<SetParameters>(params.edit).a1.has_value());
   EXPECT_EQ(*std::get<SetParameters>(params.edit).a2, Vec3(2, 2, 2));
-  auto forces = parseEdit(
+  auto forces = parseFrameEdit(
       R"({"op":"set-forces","frame":1,"forces":[{"f0":[0,0,1],"region":[0.2,0.4,0.1,0.9]}]})", m);
   EXPECT_EQ(std::get<SetFrameForces>(forces.edit).forces.at(0).region.u1, 0.4);
   auto shared =
-      parseEdit(R"({"op":"set-shared-forces","forces":[{"f0":[0,0,-1],"frames":[0,3]}]})", m);
+      parseFrameEdit(R"({"op":"set-shared-forces","forces":[{"f0":[0,0,-1],"frames":[0,3]}]})", m);
   EXPECT_EQ(std::get<SetSharedForces>(shared.edit).forces.at(0).frames.size(), 2u);
 }
 
@@ -136,6 +141,53 @@ TEST(Session, ForcesAndSharedForcesTakeEffect) {
   EXPECT_NEAR((s.solved().frames()->patches[3].position(0.5, 0.5) - flat).z(), expected, 1e-12);
   s.apply(SetFrameForces{3, {FrameForce{Vec3(0, 0, -5), Region{}}}});
   EXPECT_NEAR((s.solved().frames()->patches[3].position(0.5, 0.5) - flat).z(), 2 * expected, 1e-12);
+}
+
+}  // namespace
+}  // namespace pdesurf
+
+namespace pdesurf {
+namespace {
+
+TEST(ModelSession, EveryExampleTakesAnEditThroughOnePathAndUndoesIt) {
+  // The first of these edits each example's method takes (a vertex, a curve by index or by
+  // name, a net's corner): parsed by parseEdit and applied by apply, whatever the type.
+  const char* const kEdits[] = {
+      R"({"op": "move-vertex", "vertex": 0, "position": [0.5, 0.5, 0.5]})",
+      R"({"op": "transform-curve", "curve": 0, "translate": [0, 0, 0.05]})",
+      R"({"op": "transform-curve", "curve": "uMin", "translate": [0, 0, 0.05]})",
+      R"({"op": "transform-curve", "curve": "start", "translate": [0, 0, 0.05]})"};
+  for (const std::string& file : testing::exampleFiles()) {
+    SCOPED_TRACE(file);
+    ModelSession s(loadModel(file), file);
+    const std::string before = serializeModel(s.model());
+    std::vector<std::string> edits(std::begin(kEdits), std::end(kEdits));
+    // A net's corner P[0][0] lifted a little.
+    if (const auto doc = nlohmann::json::parse(before); doc.contains("net")) {
+      auto p = doc["net"][0][0];
+      p[2] = p[2].get<double>() + 0.05;
+      edits.push_back(R"({"op": "move-control-points", "points": [[0, 0]], "positions": [)" +
+                      p.dump() + "]}");
+    }
+    std::optional<ModelEdit> edit;
+    for (const std::string& json : edits) {
+      try {
+        edit = parseEdit(json, s.model());
+        break;
+      } catch (const ModelError&) {
+        // not this method's, or not this form's: the next
+      }
+    }
+    ASSERT_TRUE(edit.has_value()) << modelTypeName(s.model());
+    s.apply(*edit);
+    const std::string after = serializeModel(s.model());
+    EXPECT_NE(after, before);
+    EXPECT_EQ(s.undoDepth(), 1u);
+    ASSERT_TRUE(s.undo());
+    EXPECT_EQ(serializeModel(s.model()), before);
+    ASSERT_TRUE(s.redo());
+    EXPECT_EQ(serializeModel(s.model()), after);
+  }
 }
 
 }  // namespace

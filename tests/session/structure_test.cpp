@@ -52,7 +52,7 @@ bool facesOneWay(const VertexFrameModel& m) {
 
 /// Applies an edit given as JSON, as the studio does.
 void applyJson(ModelSession& s, std::string_view json) {
-  s.apply(parseEdit(json, *s.frames()).edit);
+  s.apply(parseFrameEdit(json, *s.frames()).edit);
 }
 
 /// The problem a refused edit reports, and that it changed nothing.
@@ -157,7 +157,7 @@ TEST(Structure, ExtrudeRefusesInnerEdgesAndPoles) {
       "listed twice"));
   std::string path;
   try {
-    parseEdit(R"({"op":"extrude","edges":[{"frame":0,"side":4}]})", *s.frames());
+    parseFrameEdit(R"({"op":"extrude","edges":[{"frame":0,"side":4}]})", *s.frames());
   } catch (const ModelError& e) {
     path = e.jsonPath();
   }
@@ -451,9 +451,10 @@ TEST(Structure, WeldVerticesJoinsTwoFramesAndRefusesFoldingOne) {
   const std::uint32_t keep2 = two.frames[0].vertices[4], gone2 = copy.vertices[6] - 1;
   std::string why;
   try {
-    t.apply(parseEdit(fmt::format(R"({{"op":"weld-vertices","vertices":[{},{}]}})", keep2, gone2),
-                      *t.frames())
-                .edit);
+    t.apply(
+        parseFrameEdit(fmt::format(R"({{"op":"weld-vertices","vertices":[{},{}]}})", keep2, gone2),
+                       *t.frames())
+            .edit);
   } catch (const ModelError& e) {
     why = e.what();
   }
@@ -523,7 +524,7 @@ TEST(Structure, MoveVerticesMovesASelectionInOneStep) {
   std::string path;
   const auto problem = [&](std::string_view json) {
     try {
-      parseEdit(json, *s.frames());
+      parseFrameEdit(json, *s.frames());
     } catch (const ModelError& e) {
       path = e.jsonPath();
       return e.problem();

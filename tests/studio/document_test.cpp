@@ -7,11 +7,13 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "document.hpp"
 #include "http_error.hpp"
 #include "journal.hpp"
+#include "pdesurf/edit_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "support/cli_run.hpp"
 
@@ -87,6 +89,58 @@ TEST_F(DocumentTest, SaveKeepsFieldsTheEditorDoesNotHold) {
   // The edit itself is saved.
   EXPECT_NEAR(saved["vertices"][0][0].get<double>(), file["vertices"][0][0].get<double>() + 0.02,
               1e-12);
+}
+
+TEST_F(DocumentTest, SaveKeepsUnknownFieldsOfEveryTypeMatchedByIdentity) {
+  // Each type's file fields are kept after an edit of its own through the one edit path (these
+  // methods' parsers refuse unknown fields and hold "description"; vertex frames' below).
+  for (const char* example :
+       {"membrane.json", "vase-sections.json", "bspline-dome.json", "bspline-blend.json"}) {
+    SCOPED_TRACE(example);
+    const fs::path path = copyExample(example);
+    const Json file = Json::parse(readText(path));
+    Document doc(sandbox_);
+    doc.open(path, example);
+    const char* edit =
+        std::string(example) == "bspline-blend.json"
+            ? R"({"op": "transform-curve", "curve": "uMin", "translate": [0, 0, 0.01]})"
+        : std::string(example) == "bspline-dome.json"
+            ? R"({"op": "transform-curve", "curve": "vMax", "translate": [0, 0, 0.01]})"
+            : R"({"op": "transform-curve", "curve": 1, "translate": [0, 0, 0.01]})";
+    doc.session().apply(parseEdit(edit, doc.session().model()));
+    const std::string edited = serializeModel(doc.session().model());
+    doc.save(path);
+    const std::string saved = readText(path);
+    EXPECT_EQ(Json::parse(saved)["description"], file["description"]);
+    // The kept fields change nothing of the model: it reads back as the edit made it.
+    EXPECT_EQ(serializeModel(parseModel(saved, "saved")), edited);
+  }
+  // A frame's own field stays with its frame by identity: an extrusion adds frames (a match
+  // by index alone needs as many frames as the file).
+  const fs::path path = copyExample("grid-forces.json");
+  Json file = Json::parse(readText(path));
+  file["x-note"] = {{"by", "a test"}};
+  file["frames"][1]["x-tag"] = "kept";
+  std::ofstream(path, std::ios::binary) << file.dump(2);
+  Document doc(sandbox_);
+  doc.open(path, "grid-forces.json");
+  // The first boundary side found (extrusion leaves the frames there as they are).
+  const std::size_t frames = file["frames"].size();
+  for (std::size_t k = 0; k < 4 * frames && doc.session().undoDepth() == 0; ++k) try {
+      doc.session().apply(parseEdit(fmt::format(R"({{"op": "extrude", "edges": [{{"frame": {}, )"
+                                                R"("side": {}}}]}})",
+                                                k / 4, k % 4),
+                                    doc.session().model()));
+    } catch (const ModelError&) {
+      // not a boundary side: the next
+    }
+  ASSERT_EQ(doc.session().undoDepth(), 1u);
+  doc.save(path);
+  const Json saved = Json::parse(readText(path));
+  ASSERT_GT(saved["frames"].size(), file["frames"].size());
+  EXPECT_EQ(saved["x-note"]["by"], "a test");
+  EXPECT_EQ(saved["frames"][1].value("x-tag", ""), "kept");
+  EXPECT_EQ(saved["frames"][0].count("x-tag"), 0u);
 }
 
 TEST_F(DocumentTest, AnAutosaveThatDiffersIsOfferedRecoveredAndDiscarded) {

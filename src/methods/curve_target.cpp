@@ -1,5 +1,5 @@
 // The curve a shape edit names in a model (curve_target.hpp).
-#include "session/curve_target.hpp"
+#include "methods/curve_target.hpp"
 
 #include <fmt/format.h>
 

@@ -10,10 +10,10 @@
 
 #include "io/json_reader.hpp"
 #include "io/model_reader.hpp"
+#include "methods/curve_target.hpp"
 #include "pdesurf/edit_io.hpp"
 #include "pdesurf/session.hpp"
 #include "pdesurf/spectral_io.hpp"
-#include "session/curve_target.hpp"
 
 namespace pdesurf {
 

@@ -1,6 +1,6 @@
 // Shape edits of spectral, cross-section and B-spline PDE models (include/pdesurf/session.hpp),
-// as src/io/shape_edit_io.cpp parses them: applied to a copy of the model, and checked as its
-// file would be before the session takes it.
+// as shape_edit_io.cpp parses them: applied to a copy of the model, checked as its file would
+// be and solved before the session takes it (shape_edits.hpp: those methods' applyEdit).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -9,10 +9,11 @@
 #include <fmt/format.h>
 
 #include "io/model_reader.hpp"
+#include "methods/curve_target.hpp"
+#include "methods/shape_edits.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/session.hpp"
 #include "pdesurf/spectral_io.hpp"
-#include "session/curve_target.hpp"
 
 namespace pdesurf {
 
@@ -171,9 +172,12 @@ void checkReach(const AnyModel& before, const SolvedModel& solvedBefore, const A
                   advice.empty() ? "Move whole curves instead" : advice));
 }
 
-bool takesShapeEdits(const AnyModel& model) { return !model.is<VertexFrameModel>(); }
+namespace {
 
-AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const ShapeEdit& edit) {
+/// The model after a shape edit (parsed against it by parseShapeEdit), checked as its file
+/// would be (parseModel of its text). `solved` is `model` solved (AddSection samples it).
+/// Throws ModelError (source "edit") naming what is wrong.
+AnyModel shapeEdited(const AnyModel& model, const SolvedModel& solved, const ShapeEdit& edit) {
   const ModelReader rd("edit");
   AnyModel next = model;
   std::visit(
@@ -268,19 +272,25 @@ AnyModel applyShapeEdit(const AnyModel& model, const SolvedModel& solved, const 
   return next;
 }
 
-void ModelSession::apply(const ShapeEdit& edit, std::string_view group) {
-  if (!takesShapeEdits(model()))  // Not a pdesurf::Error: the caller's slip, not input.
-    throw std::logic_error("ModelSession::apply: vertex-frame models take Edit, not ShapeEdit");
-  const State* base = &current_;
+}  // namespace
+
+namespace detail {
+
+EditResult applyShapeEdit(const EditContext& context, const ModelEdit& modelEdit) {
+  const ShapeEdit& edit = modelEdit.as<ShapeEdit>(modelTypeName(*context.current.model));
+  // A drag's absolute steps apply to the model as the drag began.
+  const ModelState* base = &context.current;
   const auto* t = std::get_if<TransformCurve>(&edit);
   const auto* m = std::get_if<MoveCurvePoints>(&edit);
-  if ((t && t->fromGroupStart) || (m && m->falloff > 0.0))
-    if (const State* start = history_.groupStart(group)) base = start;
-  auto next = std::make_shared<const AnyModel>(applyShapeEdit(*base->model, *base->solved, edit));
-  auto solvedNext = solveIfFixed(next);  // may throw: nothing changed yet
+  if (((t && t->fromGroupStart) || (m && m->falloff > 0.0)) && context.groupStart)
+    base = context.groupStart;
+  auto next = std::make_shared<const AnyModel>(shapeEdited(*base->model, *base->solved, edit));
+  auto solvedNext = std::make_shared<const SolvedModel>(solveModel(next, context.source));
   checkReach(*base->model, *base->solved, *next, *solvedNext);
-  change(std::move(next), std::move(solvedNext), group);
+  return {{std::move(next), std::move(solvedNext), nullptr}};
 }
+
+}  // namespace detail
 
 std::string dragAdvice(const AnyModel& model) {
   if (const auto* m = model.as<CrossSectionModel>(); m && m->options.method != ChainMethod::Global)
