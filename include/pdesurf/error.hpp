@@ -19,6 +19,8 @@ class Error : public std::runtime_error {
  public:
   /// An error that names no file.
   explicit Error(const std::string& message);
+  /// An error of a file (or a source) with no JSON path: a mesh file, a layout, a CAD file.
+  Error(const std::string& file, const std::string& message) : Error(file, "", message) {}
   Error(const std::string& file, const std::string& jsonPath, const std::string& message);
   /// The file (or the source a text was read as, e.g. "edit"), or empty.
   const std::string& file() const { return file_; }
@@ -54,8 +56,7 @@ class ModelError : public Error {
 /// and the reason.
 class FileError : public Error {
  public:
-  explicit FileError(const std::string& message) : Error(message) {}
-  FileError(const std::string& file, const std::string& message) : Error(file, "", message) {}
+  using Error::Error;
 };
 
 /// A mesh file could not be read or written, or its extension names no mesh format
@@ -70,8 +71,7 @@ class MeshIoError : public FileError {
 /// source), the face or the edge, and the problem.
 class LayoutError : public Error {
  public:
-  explicit LayoutError(const std::string& message) : Error(message) {}
-  LayoutError(const std::string& file, const std::string& message) : Error(file, "", message) {}
+  using Error::Error;
 };
 
 /// A section of a cross-section chain cannot be used (pdesurf/sections.hpp): message()
@@ -107,8 +107,7 @@ class LoftError : public Error {
 /// failed to write (pdesurf/cad_export.hpp).
 class CadError : public Error {
  public:
-  explicit CadError(const std::string& message) : Error(message) {}
-  CadError(const std::string& file, const std::string& message) : Error(file, "", message) {}
+  using Error::Error;
 };
 
 /// A B-spline approximation that did not reach the tolerance within
