@@ -5,10 +5,11 @@ Usage: PYTHONPATH=build/python python3 bench/python_threads.py [--rounds N]
 
 The package releases the GIL around tessellation (python/tests/test_robustness.py checks
 that a second thread runs during the call). This measures what that buys on a machine with
-two or more cores: the vase at resolution 257, the library's own threads set to 1 so that each
-call uses one core, a warm-up call, ROUNDS rounds alternating sequential and concurrent; the medians, their
-ratio (target: concurrent <= 0.7x sequential, docs/performance.md "Python") and whether the
-results are byte-identical (compared after the clock stops: the copy holds the GIL).
+two or more cores: the vase at resolution 257, the library's own threads set to 1 so that
+each call uses one core, a warm-up call, then ROUNDS rounds alternating sequential and
+concurrent; the medians, their ratio (target: concurrent <= 0.7x sequential,
+docs/performance.md "Python") and whether the results are byte-identical (compared after the
+clock stops: the copy holds the GIL).
 """
 
 import argparse
