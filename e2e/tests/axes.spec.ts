@@ -158,6 +158,8 @@ test("local axes: the gizmo's box scales a turned frame along its own x, its rin
   await page.keyboard.press('?');
   await page.getByTestId('help-keys').locator('kbd', { hasText: /^Shift\+G$/ }).scrollIntoViewIfNeeded();
   await expect(page.getByTestId('help')).toContainText('drag a ring / a box of the gizmo');
+  await expect(page.getByTestId('help')).toContainText('Shift+right-click in either view');
+  await expect(page.getByTestId('help-panel')).toContainText('a number or an expression');
   await page.screenshot({ path: shot('axes-help.png') });
   await page.keyboard.press('Escape');
 });
@@ -174,10 +176,10 @@ const cursorOf = (page: Page) => hook<Cursor>(page, 'cursor');
 test('the 3D cursor: placed on the surface by Shift+right-click, typed, to the selection; Shift+R, the rings and boxes pivot on it; kept over a reload, never in the file', async ({ page, studio }) => {
   await openStudio(page, studio);
   await newModel(page, 'single', 'cursor.json');
-  await page.getByTestId('view-iso').click();
-  await page.waitForTimeout(300);
   const start = await model(studio);
   const ring: number[] = start.frames[0].vertices;
+  await page.getByTestId('view-iso').click();
+  await page.waitForTimeout(300);
   const screen = (v: number) => hook<Point>(page, 'vertexScreen', v);
   const [c0, c4] = [await screen(ring[0]), await screen(ring[4])];
 
