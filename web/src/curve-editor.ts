@@ -215,6 +215,7 @@ export function mountCurveEditor(studio: Studio): void {
     $('shape-handle').textContent = describe(h);
     if (choose && (h?.kind === 'curve' || h?.kind === 'tangent')) chooseCurve(h.curve);
     draw();
+    gizmoSubjects.changed?.(); // on a picked control point
   }
   /** Makes `ref` the panel's curve (the one the keys, the gizmo and the buttons act on). */
   function chooseCurve(ref: CurveRef): void {
@@ -327,16 +328,37 @@ export function mountCurveEditor(studio: Studio): void {
   // the pivot, Fourier curves and vectors too) and boxes (the curve's points scaled along an
   // axis: move-curve-points; a curve without points cannot scale along one axis) on the pivot.
   let gizmoMove: (CurveMove & { pivot: Vec3 }) | null = null;
+  // A given control point of a net picked (a net has no curves): the gizmo moves, turns and
+  // scales it alone about the pivot (move-control-points, absolute).
+  const pickedControl = () => (shape() && picked?.kind === 'control' ? picked : null);
+  const controlPivot = (h: Handle) => singlePivot(pivotChoice(), pivotPlaces(studio, h.p)) ?? h.p;
+  let gizmoPoint: { h: Extract<Handle, { kind: 'control' }>; index: number; pivot: Vec3 } | null = null;
+  const stepPoint = (at: (p: Vec3) => Vec3) => {
+    const { h, index } = gizmoPoint!;
+    const target = at(h.p);
+    moveHandle(index, target);
+    pump.push(() => send({ op: 'move-control-points', points: [[h.i, h.j]], positions: [target] }));
+  };
   gizmoSubjects.shape = {
     centre: () => {
+      const control = pickedControl();
+      if (control) return control.p;
       const entry = shape() ? chosen() : null;
       return entry && !entry.vectors ? entry.centre : null;
     },
     pivot: () => {
+      const control = pickedControl();
+      if (control) return controlPivot(control);
       const entry = shape() ? chosen() : null;
       return entry ? curvePivot(entry) : null;
     },
     begin: (kind) => {
+      const control = pickedControl();
+      if (control) {
+        gizmoPoint = { h: control, index: handles.findIndex((h) => sameRef(h, control)), pivot: controlPivot(control) };
+        studio.beginGesture('control-point');
+        return true;
+      }
       const entry = chosen();
       if (!entry) return false;
       if (kind === 'scale' && (entry.vectors || !handles.some((h) => h.kind === 'curve' && h.curve === entry.ref))) {
@@ -347,15 +369,18 @@ export function mountCurveEditor(studio: Studio): void {
       return true;
     },
     move: (d) => {
-      if (gizmoMove) stepCurveMove(gizmoMove, d);
+      if (gizmoPoint) stepPoint((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]]);
+      else if (gizmoMove) stepCurveMove(gizmoMove, d);
     },
     turn: (q) => {
+      if (gizmoPoint) stepPoint((p) => turnedBy(p, gizmoPoint!.pivot, q));
       if (!gizmoMove) return;
       const { pivot, ref } = gizmoMove;
       const rotate = axisAngleOf(q);
       stepCurve(gizmoMove, (p) => turnedBy(p, pivot, q), { op: 'transform-curve', curve: ref, rotate, center: pivot, from: 'group-start' });
     },
     scale: (f, basis) => {
+      if (gizmoPoint) stepPoint((p) => scaledAlong(p, gizmoPoint!.pivot, basis, f));
       if (!gizmoMove) return;
       const { pivot, ref, moved } = gizmoMove;
       const at = (p: Vec3) => scaledAlong(p, pivot, basis, f);
@@ -363,8 +388,8 @@ export function mountCurveEditor(studio: Studio): void {
       stepCurve(gizmoMove, at, { op: 'move-curve-points', curve: ref, points, positions: moved.map(({ from }) => at(from)) });
     },
     end: async () => {
-      if (!gizmoMove) return;
-      gizmoMove = null;
+      if (!gizmoMove && !gizmoPoint) return;
+      gizmoMove = gizmoPoint = null;
       await endCurveMove();
     },
   };

@@ -4,7 +4,7 @@
 // selection (the curve) along that axis (or in that plane); or three rings that turn it about
 // each axis, or three boxes that scale it along each axis, on the pivot (the panel's pivot:
 // each vertex turns and scales about its own, selection-transform.ts pivotsOf; a curve about
-// its one, curve-editor.ts). The axes are
+// its one, and a picked control point of a net alone, curve-editor.ts). The axes are
 // the panel's orientation (global, local, normal: orientation.ts). One undo step per drag, as a
 // dragged handle. three.js's TransformControls draws and solves it; its pointer events are fed
 // from here, ahead of the handles' drag tool and the orbit controls (a press on the gizmo
