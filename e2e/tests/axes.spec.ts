@@ -16,6 +16,9 @@ const ROUNDING = 1e-9;
 const MESH_NORMAL = 1e-6;
 /** The effect arrows are the panel's formula applied to the file's numbers (rounding only). */
 const ARROW_ROUNDING = 1e-9;
+/** A ray meeting a plane (the cursor placed off the model) is on it to rounding, relative to
+ * how far it went. */
+const ON_PLANE = 1e-9;
 /** A shared force's term is added to each of its patches: at half the f0 the arrows' tails
  * (the tips, on the surface, less the formula) stay put, to rounding (a fraction of the move). */
 const FORCE_EFFECT_MATCH = 1e-9;
@@ -28,6 +31,8 @@ const model = async (studio: Studio) => (await studio.state()).model;
 const sub = (a: Vec, b: Vec) => a.map((x, i) => x - b[i]);
 const dot = (a: Vec, b: Vec) => a.reduce((s, x, i) => s + x * b[i], 0);
 const norm = (a: Vec) => Math.sqrt(dot(a, a));
+/** Leaves any box that has the focus (keys are keys again). */
+const leaveBoxes = (page: Page) => page.locator('body').click({ position: { x: 5, y: 5 } });
 
 async function drag(page: Page, from: Point, to: Point, keys: string[] = []): Promise<void> {
   await page.mouse.move(from.x, from.y);
@@ -153,8 +158,133 @@ test("local axes: the gizmo's box scales a turned frame along its own x, its rin
   await page.keyboard.press('?');
   await page.getByTestId('help-keys').locator('kbd', { hasText: /^Shift\+G$/ }).scrollIntoViewIfNeeded();
   await expect(page.getByTestId('help')).toContainText('drag a ring / a box of the gizmo');
+  await expect(page.getByTestId('help')).toContainText('Shift+right-click in either view');
+  await expect(page.getByTestId('help-panel')).toContainText('a number or an expression');
   await page.screenshot({ path: shot('axes-help.png') });
   await page.keyboard.press('Escape');
+});
+
+/** Shift+right-click at a client point (places the 3D cursor). */
+async function placeCursor(page: Page, at: Point): Promise<void> {
+  await page.keyboard.down('Shift');
+  await page.mouse.click(at.x, at.y, { button: 'right' });
+  await page.keyboard.up('Shift');
+}
+type Cursor = { p: Vec; frame: Point & { visible: boolean } };
+const cursorOf = (page: Page) => hook<Cursor>(page, 'cursor');
+
+test('the 3D cursor: placed on the surface by Shift+right-click, typed, to the selection; Shift+R, the rings and boxes pivot on it; kept over a reload, never in the file', async ({ page, studio }) => {
+  await openStudio(page, studio);
+  await newModel(page, 'single', 'cursor.json');
+  const start = await model(studio);
+  const ring: number[] = start.frames[0].vertices;
+  await page.getByTestId('view-iso').click();
+  await page.waitForTimeout(300);
+  const screen = (v: number) => hook<Point>(page, 'vertexScreen', v);
+  const [c0, c4] = [await screen(ring[0]), await screen(ring[4])];
+
+  // On the surface: a third of the way along the patch's diagonal, the point of the surface
+  // under the pointer (the flat patch: z = 0).
+  const on = { x: Math.round(c0.x + (c4.x - c0.x) / 3), y: Math.round(c0.y + (c4.y - c0.y) / 3) };
+  const under = (await hook<Vec | null>(page, 'surfaceUnder', on.x, on.y))!;
+  await placeCursor(page, on);
+  await expect.poll(async () => (await cursorOf(page)).p).toEqual(under);
+  expect(Math.abs(under[2])).toBeLessThan(ROUNDING);
+  expect(under[0]).toBeGreaterThan(0.1);
+  expect(under[0]).toBeLessThan(0.6);
+  await expect(page.getByTestId('cursor-x')).toHaveValue(String(+under[0].toFixed(6)));
+  expect(await page.evaluate(() => (window as any).__studio.selection().frames)).toEqual([]); // no pan, no pick
+  // Off the model (the view's top left): in the plane through the cursor facing the camera.
+  const box = (await page.getByTestId('frame-view').boundingBox())!;
+  await placeCursor(page, { x: box.x + 40, y: box.y + 60 });
+  const off = (await cursorOf(page)).p;
+  const facing = (await hook<{ frame: { direction: Vec } }>(page, 'cameras')).frame.direction;
+  expect(norm(sub(off, under))).toBeGreaterThan(0.3);
+  expect(Math.abs(dot(sub(off, under), facing))).toBeLessThan(ON_PLANE * norm(sub(off, under)));
+
+  // Typed, as expressions: (1, 1/2, 0), the middle of the frame's right side. A quarter turn
+  // (Shift+R) about it with the pivot on the cursor: exact numbers.
+  for (const [axis, text] of [['x', '2/2'], ['y', '1/2'], ['z', '0']]) {
+    await page.getByTestId(`cursor-${axis}`).fill(text);
+    await page.getByTestId(`cursor-${axis}`).press('Enter');
+  }
+  const cursor = [1, 0.5, 0];
+  await expect.poll(async () => (await cursorOf(page)).p).toEqual(cursor);
+  await page.getByTestId('selection-pivot').selectOption('cursor');
+  await page.getByTestId('view-top').click();
+  await page.waitForTimeout(300);
+  await page.getByTestId('selection-degrees').fill('90');
+  await leaveBoxes(page);
+  await clickPatch(page, 0);
+  await page.keyboard.press('Shift+R');
+  await expect.poll(async () => (await studio.state()).undo).toBe(1);
+  await settle(page);
+  let file = await saved(page, studio, 'cursor.json');
+  start.vertices.forEach((p: Vec, v: number) => expect(file.vertices[v]).toEqual([1 - (p[1] - 0.5), 0.5 + (p[0] - 1), p[2]]));
+
+  // The rings stand on the cursor; the z ring dragged round turns the frame about it.
+  await page.keyboard.press('g');
+  await page.keyboard.press('Shift+g');
+  await expect(page.getByTestId('gizmo-mode')).toHaveValue('rotate');
+  await page.getByTestId('fit-all').click();
+  await page.waitForTimeout(400);
+  const [r0, r1] = [(await hook<Point>(page, 'gizmoHandle', 'z', 0))!, (await hook<Point>(page, 'gizmoHandle', 'z', Math.PI))!];
+  const mark = (await cursorOf(page)).frame;
+  expect(Math.hypot((r0.x + r1.x) / 2 - mark.x, (r0.y + r1.y) / 2 - mark.y)).toBeLessThan(1);
+  await drag(page, (await hook<Point>(page, 'gizmoHandle', 'z', Math.PI / 4))!, (await hook<Point>(page, 'gizmoHandle', 'z', Math.PI / 4 + 1.5))!);
+  await expect.poll(async () => (await studio.state()).undo).toBe(2);
+  const quarter = file.vertices as Vec[];
+  file = await saved(page, studio, 'cursor.json');
+  const angle = (p: Vec) => Math.atan2(p[1] - cursor[1], p[0] - cursor[0]);
+  const turn = angle(file.vertices[ring[0]]) - angle(quarter[ring[0]]);
+  expect(Math.abs(turn)).toBeGreaterThan(0.1);
+  ring.forEach((v) => {
+    const p = file.vertices[v], q = quarter[v];
+    expect(Math.abs(norm(sub(p, cursor)) - norm(sub(q, cursor)))).toBeLessThan(ROUNDING);
+    expect(Math.abs(p[2] - q[2])).toBeLessThan(ROUNDING);
+    const t = Math.atan2(Math.sin(angle(p) - angle(q) - turn), Math.cos(angle(p) - angle(q) - turn));
+    if (norm(sub(q, cursor)) > 0.1) expect(Math.abs(t)).toBeLessThan(ROUNDING); // the one on the cursor stays
+  });
+
+  await page.getByTestId('fit-all').click();
+  await page.waitForTimeout(400);
+  await page.screenshot({ path: shot('axes-cursor.png') });
+
+  // The boxes on the cursor too: the x box dragged outward scales x offsets from it alone.
+  await page.keyboard.press('Shift+g');
+  await expect(page.getByTestId('gizmo-mode')).toHaveValue('scale');
+  await page.waitForTimeout(200);
+  const centre = (await cursorOf(page)).frame;
+  const xBox = (await hook<Point>(page, 'gizmoHandle', 'x'))!;
+  await drag(page, xBox, { x: xBox.x + 0.5 * (xBox.x - centre.x), y: xBox.y });
+  await expect.poll(async () => (await studio.state()).undo).toBe(3);
+  const turnedAbout = file.vertices as Vec[];
+  file = await saved(page, studio, 'cursor.json');
+  const far = ring.reduce((a, b) => (Math.abs(turnedAbout[b][0] - 1) > Math.abs(turnedAbout[a][0] - 1) ? b : a));
+  const factor = (file.vertices[far][0] - 1) / (turnedAbout[far][0] - 1);
+  expect(factor).toBeGreaterThan(1.1);
+  ring.forEach((v) => {
+    const p = file.vertices[v], q = turnedAbout[v];
+    expect(Math.abs(p[0] - 1 - factor * (q[0] - 1))).toBeLessThan(ROUNDING);
+    expect(Math.abs(p[1] - q[1])).toBeLessThan(ROUNDING);
+    expect(Math.abs(p[2] - q[2])).toBeLessThan(ROUNDING);
+  });
+
+  // To the selection: the centre of the frame's box; to the origin.
+  await page.getByTestId('cursor-to-selection').click();
+  const xs = ring.map((v) => file.vertices[v][0]), ys = ring.map((v) => file.vertices[v][1]);
+  await expect.poll(async () => (await cursorOf(page)).p).toEqual([(Math.min(...xs) + Math.max(...xs)) / 2, (Math.min(...ys) + Math.max(...ys)) / 2, 0]);
+  await page.getByTestId('cursor-to-origin').click();
+  await expect.poll(async () => (await cursorOf(page)).p).toEqual([0, 0, 0]);
+
+  // Kept by the browser for this file over a reload; the model file never holds it.
+  await page.getByTestId('cursor-y').fill('-1/4');
+  await page.getByTestId('cursor-y').press('Enter');
+  await page.reload();
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect.poll(async () => (await cursorOf(page)).p).toEqual([0, -0.25, 0]);
+  await expect(page.getByTestId('cursor-y')).toHaveValue('-0.25');
+  expect(readFileSync(path.join(studio.root, 'cursor.json'), 'utf8')).not.toContain('cursor');
 });
 
 test('normal axes: the selection moved by dz goes along the surface normal of a tilted frame', async ({ page, studio }) => {

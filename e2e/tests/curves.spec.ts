@@ -306,3 +306,70 @@ test.describe('a B-spline PDE blend (seed 004 Example 4)', () => {
     await expect.poll(() => fileText(studio)).toBe(original);
   });
 });
+
+test.describe('a section of the vase, the pivot on the 3D cursor', () => {
+  test.use({ example: 'vase-sections.json' });
+
+  test("the gizmo's z ring turns the chosen section about the cursor, its x box scales it along x from it: the file's points; one undo step each; undone byte for byte", async ({ page, studio }) => {
+    const original = fileText(studio);
+    const was = JSON.parse(original).curves as { points: V[] }[];
+    await openStudio(page, studio);
+    await page.getByTestId('curve-select').selectOption('6');
+    // The cursor on the section's centre, then a tenth to the side (typed as an expression).
+    await page.getByTestId('cursor-to-selection').click();
+    const cursorOf = async () => (await page.evaluate(() => (window as any).__studio.cursor())).p as V;
+    const centre = [0, 1, 2].map((c) => was[6].points.reduce((s, p) => s + p[c], 0) / was[6].points.length);
+    await expect.poll(async () => distance(await cursorOf(), centre)).toBeLessThan(THROUGH);
+    const x = await page.getByTestId('cursor-x').inputValue();
+    await page.getByTestId('cursor-x').fill(`${x} + 1/10`);
+    await page.getByTestId('cursor-x').press('Enter');
+    await expect.poll(async () => (await cursorOf())[0]).toBe(Number(x) + 0.1);
+    const cursor = await cursorOf();
+    await page.getByTestId('selection-pivot').selectOption('cursor');
+    await page.getByTestId('view-top').click();
+    await page.waitForTimeout(400);
+    await leaveBoxes(page);
+    await page.keyboard.press('g');
+    await page.keyboard.press('Shift+g');
+    await expect(page.getByTestId('gizmo-mode')).toHaveValue('rotate');
+    await page.waitForTimeout(200);
+    const ring = (angle: number) => page.evaluate((a) => (window as any).__studio.gizmoHandle('z', a), angle) as Promise<Point>;
+    await drag(page, await ring(Math.PI / 4), await ring(Math.PI / 4 + 0.8));
+    await expect.poll(() => undoDepth(studio)).toBe(1);
+    await meshUpToDate(page);
+    await page.screenshot({ path: shot('curves-cursor-ring.png') });
+    await save(page);
+    const turned = fileJson(studio).curves as { points: V[] }[];
+    const angle = (p: V) => Math.atan2(p[1] - cursor[1], p[0] - cursor[0]);
+    const turn = angle(turned[6].points[0]) - angle(was[6].points[0]);
+    expect(Math.abs(Math.sin(turn))).toBeGreaterThan(0.1);
+    turned[6].points.forEach((p, k) => {
+      const q = was[6].points[k];
+      expect(Math.abs(Math.hypot(p[0] - cursor[0], p[1] - cursor[1]) - Math.hypot(q[0] - cursor[0], q[1] - cursor[1]))).toBeLessThan(ROUNDING);
+      expect(Math.abs(p[2] - q[2])).toBeLessThan(ROUNDING);
+      expect(Math.abs(Math.sin(angle(p) - angle(q) - turn))).toBeLessThan(ROUNDING);
+    });
+    turned.forEach((c, i) => i === 6 || expect(c.points).toEqual(was[i].points));
+
+    // The boxes on the cursor: the x box dragged outward (right, in the top view).
+    await page.keyboard.press('Shift+g');
+    await expect(page.getByTestId('gizmo-mode')).toHaveValue('scale');
+    await page.waitForTimeout(200);
+    const box = (await page.evaluate(() => (window as any).__studio.gizmoHandle('x'))) as Point;
+    const mark = (await page.evaluate(() => (window as any).__studio.cursor())).frame as Point;
+    await drag(page, box, { x: box.x + 0.5 * (box.x - mark.x), y: box.y });
+    await expect.poll(() => undoDepth(studio)).toBe(2);
+    await save(page);
+    const scaled = fileJson(studio).curves[6].points as V[];
+    const far = turned[6].points.reduce((a, p, k) => (Math.abs(p[0] - cursor[0]) > Math.abs(turned[6].points[a][0] - cursor[0]) ? k : a), 0);
+    const factor = (scaled[far][0] - cursor[0]) / (turned[6].points[far][0] - cursor[0]);
+    expect(factor).toBeGreaterThan(1.1);
+    scaled.forEach((p, k) => {
+      const q = turned[6].points[k];
+      expect(Math.abs(p[0] - cursor[0] - factor * (q[0] - cursor[0]))).toBeLessThan(ROUNDING);
+      expect(Math.abs(p[1] - q[1]) + Math.abs(p[2] - q[2])).toBeLessThan(ROUNDING);
+    });
+    await undoAll(page, studio, 2);
+    await expect.poll(() => fileText(studio)).toBe(original);
+  });
+});

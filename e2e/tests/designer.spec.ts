@@ -556,6 +556,53 @@ test('snapping a drag onto the surface: the vertex lands on the patch under the 
   expect((await studio.state()).undo).toBe(1);
 });
 
+test('X with snapping to frame edges, then onto the surface: the vertex slides along x to the target\'s x, its y and z kept', async ({ page, studio }) => {
+  const m = await twoIslands(page, studio, 'lock-snap.json'); // x from 0 to 1 and from 2 to 3
+  const at = (p: number[]) => m.vertices.findIndex((q: number[]) => close(q, p));
+  const moved = at([2, 0.5, 0]); // the right island's left side's middle
+  const lockedDrag = async (to: Point) => {
+    const p = await hook<Point>(page, 'vertexScreen', moved);
+    await page.mouse.move(p.x, p.y);
+    await page.mouse.down();
+    await page.mouse.move((p.x + to.x) / 2, (p.y + to.y) / 2, { steps: 3 });
+    await page.keyboard.press('x');
+    await page.mouse.move(to.x, to.y, { steps: 5 });
+    await page.mouse.up();
+    await settle(page);
+  };
+  // Frame edges: released 4 px right of the left island's side x = 1, a fifth of the way up it
+  // (y about 0.2): the target there is on that side, so x = 1; y = 0.5 and z = 0 kept.
+  await page.getByTestId('snap-to').selectOption('edges');
+  const side = between(await hook<Point>(page, 'vertexScreen', at([1, 0, 0])), await hook<Point>(page, 'vertexScreen', at([1, 0.5, 0])), 0.4);
+  await lockedDrag({ x: side.x + 4, y: side.y });
+  let file = await saved(page, studio, 'lock-snap.json');
+  expect(file.vertices[moved]).toEqual([1, 0.5, 0]);
+  file.vertices.forEach((p: number[], v: number) => v === moved || expect(p).toEqual(m.vertices[v]));
+  await page.keyboard.press('Control+z');
+  await expect.poll(async () => (await studio.state()).undo).toBe(1); // the delete of twoIslands
+  await settle(page);
+
+  // The surface, seen at three quarters (where a plain X lock would land elsewhere): released
+  // over the left island's patch near (0.5, 0.25, 0); x becomes that of the surface's point
+  // under the pointer (the surface as the drag began: the page's own hit test of that point).
+  await page.getByTestId('view-iso').click();
+  await page.waitForTimeout(400);
+  await page.getByTestId('snap-to').selectOption('surface');
+  const over = between(await hook<Point>(page, 'vertexScreen', at([0.5, 0, 0])), await hook<Point>(page, 'vertexScreen', at([0.5, 1, 0])), 0.25);
+  const to = { x: Math.round(over.x), y: Math.round(over.y) };
+  const target = (await hook<number[] | null>(page, 'surfaceUnder', to.x, to.y))!;
+  expect(Math.abs(target[1] - 0.5)).toBeGreaterThan(0.1); // off the axis: the lock matters
+  await lockedDrag(to);
+  await page.screenshot({ path: shot('designer-lock-snap-surface.png') });
+  file = await saved(page, studio, 'lock-snap.json');
+  const [x, y, z] = file.vertices[moved];
+  expect(Math.abs(x - target[0])).toBeLessThan(ROUNDING);
+  expect(x).toBeGreaterThan(0.2);
+  expect(x).toBeLessThan(0.8);
+  expect([y, z]).toEqual([0.5, 0]);
+  expect((await studio.state()).undo).toBe(2);
+});
+
 test('a distance typed during a drag moves exactly that far: along a locked axis, or along the drag; Enter applies', async ({ page, studio }) => {
   await newModelInView(page, studio, 'single', 'typed.json');
   const m = await model(studio);

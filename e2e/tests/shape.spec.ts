@@ -192,7 +192,7 @@ test.describe('a cross-section chain (the vase)', () => {
 test.describe('a B-spline PDE net (the wave)', () => {
   test.use({ example: 'bspline-wave.json' });
 
-  test('drag a given control point: the inner points are solved again; undo', async ({ page, studio }) => {
+  test('drag a given control point: the inner points are solved again; undo; the gizmo\'s ring turns a picked one about the 3D cursor', async ({ page, studio }) => {
     const original = fileText(studio);
     await openStudio(page, studio);
     const before = (await studio.state()).view.curves;
@@ -206,6 +206,47 @@ test.describe('a B-spline PDE net (the wave)', () => {
     const after = (await studio.state()).view.curves;
     const inner = (c: number[][][]) => c.flatMap((line) => line.slice(2, -2)).flat();
     expect(inner(after)).not.toEqual(inner(before));
+    await undo(page, studio);
+    await save(page);
+    await expect.poll(() => fileText(studio)).toBe(original);
+
+    // The point picked (a click), the 3D cursor a quarter to its side as the pivot: the
+    // gizmo's z ring turns the point alone about the cursor (one undo step).
+    await page.getByTestId('view-top').click();
+    await page.waitForTimeout(400);
+    const picked = (await handles(page)).find((x) => x.kind === 'control' && x.i === h.i && x.j === h.j)!;
+    await page.mouse.click(picked.x, picked.y);
+    await expect(page.getByTestId('shape-handle')).toHaveText(`P[${h.i}][${h.j}]`);
+    await page.getByTestId('cursor-to-selection').click();
+    const x = await page.getByTestId('cursor-x').inputValue();
+    await page.getByTestId('cursor-x').fill(`${x} + 1/4`);
+    await page.getByTestId('cursor-x').press('Enter');
+    await expect.poll(() => page.getByTestId('cursor-x').inputValue()).not.toBe(x);
+    const cursor = (await page.evaluate(() => (window as any).__studio.cursor())).p as number[];
+    await page.getByTestId('selection-pivot').selectOption('cursor');
+    await page.locator('body').click({ position: { x: 5, y: 5 } });
+    await page.keyboard.press('g');
+    await page.keyboard.press('Shift+g');
+    await expect(page.getByTestId('gizmo-mode')).toHaveValue('rotate');
+    await page.waitForTimeout(200);
+    const ring = (angle: number) => page.evaluate((a) => (window as any).__studio.gizmoHandle('z', a), angle) as Promise<{ x: number; y: number }>;
+    const [from, to] = [await ring(Math.PI / 4), await ring(Math.PI / 4 + 0.8)];
+    await page.mouse.move(from.x, from.y);
+    await page.mouse.down();
+    await page.mouse.move(to.x, to.y, { steps: 8 });
+    await page.mouse.up();
+    await settle(page);
+    await expect.poll(async () => (await studio.state()).undo).toBe(1);
+    await save(page);
+    const was = JSON.parse(original).net, now = fileJson(studio).net;
+    const p = now[h.i!][h.j!], q = was[h.i!][h.j!];
+    const flat = (a: number[]) => Math.hypot(a[0] - cursor[0], a[1] - cursor[1]);
+    expect(distance(p, q)).toBeGreaterThan(0.05);
+    expect(Math.abs(flat(p) - flat(q))).toBeLessThan(THROUGH);
+    expect(Math.abs(p[2] - q[2])).toBeLessThan(THROUGH);
+    was.forEach((row: (number[] | null)[], i: number) =>
+      row.forEach((c, j) => (i <= 1 || i === was.length - 1 || j <= 1 || j === row.length - 1) && (i !== h.i || j !== h.j) && expect(now[i][j]).toEqual(c)),
+    );
     await undo(page, studio);
     await save(page);
     await expect.poll(() => fileText(studio)).toBe(original);

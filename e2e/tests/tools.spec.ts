@@ -231,6 +231,15 @@ test.describe('analysis on the mug', () => {
     expect(a).toMatchObject({ material: 'zebra', stripes: 40, axis: [1, 0, 0] });
     await page.waitForTimeout(300);
     await page.screenshot({ path: shot('zebra-mug.png') });
+    await expect(page.getByTestId('zebra-density-value')).toHaveValue('40');
+    // The box beside the slider takes the number exactly, an expression too.
+    await page.getByTestId('zebra-density-value').fill('3*8.5');
+    await page.getByTestId('zebra-density-value').press('Enter');
+    await expect.poll(async () => (await hooks(page, 'analysis')).stripes).toBe(25.5);
+    await page.getByTestId('zebra-density-value').fill('100');
+    await page.getByTestId('zebra-density-value').press('Enter');
+    await expect(page.getByTestId('zebra-density-value')).toHaveClass(/invalid/);
+    expect((await hooks(page, 'analysis')).stripes).toBe(25.5); // refused in place
 
     await page.getByTestId('curvature').selectOption('mean');
     // From the analytic surface (GET /api/curvature), not the mesh estimate.

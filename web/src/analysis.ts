@@ -2,7 +2,7 @@
 // or Gaussian curvature colours with a legend.
 import * as THREE from 'three';
 import { api } from './api';
-import { $ } from './dom';
+import { $, readNumber } from './dom';
 import type { CurvatureMode } from './surface-view';
 import type { Studio } from './studio';
 
@@ -21,7 +21,10 @@ export function mountAnalysis(studio: Studio): void {
   const density = $<HTMLInputElement>('zebra-density');
   const direction = $<HTMLSelectElement>('zebra-direction');
   const curvature = $<HTMLSelectElement>('curvature');
-  const applyZebra = () => view.setZebraOptions(Number(density.value), AXIS[direction.value]);
+  const densityValue = $<HTMLInputElement>('zebra-density-value');
+  /** The stripes: the slider's, or exactly what was typed in the box beside it. */
+  let stripes = Number(density.value);
+  const applyZebra = () => view.setZebraOptions(stripes, AXIS[direction.value]);
   zebra.addEventListener('change', () => {
     $('zebra-options').hidden = !zebra.checked;
     view.setZebra(zebra.checked);
@@ -30,7 +33,19 @@ export function mountAnalysis(studio: Studio): void {
       view.setCurvature('off');
     }
   });
-  density.addEventListener('input', applyZebra);
+  density.addEventListener('input', () => {
+    stripes = Number(density.value);
+    densityValue.value = density.value;
+    applyZebra();
+  });
+  densityValue.addEventListener('change', () => {
+    const min = Number(density.min), max = Number(density.max);
+    const typed = readNumber(densityValue, { label: 'zebra density', min, max }, (m) => studio.showError(m));
+    if (typed === null) return; // refused in place: the stripes stay
+    stripes = typed;
+    density.value = String(typed);
+    applyZebra();
+  });
   direction.addEventListener('change', applyZebra);
   applyZebra();
 

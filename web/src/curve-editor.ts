@@ -1,16 +1,19 @@
 // The shape editor of spectral, cross-section and B-spline PDE models: handles in the frame
 // view for the points of their curves, the tips of their tangents, the given control points
 // of a net and a spectral model's spine points, and a centre mark per curve (click: choose
-// the curve; drag: move the whole curve, Fourier curves too; the move gizmo (G) on the chosen
-// curve's centre); a drag is one undo group of absolute edits (the surface previewed as
-// vertex drags are); the panel's curve transforms (Shift+R, Shift+S), sections and operator.
+// the curve; drag: move the whole curve, Fourier curves too; the gizmo (G) on the chosen
+// curve: its arrows on the centre, its rings and boxes on the panel's pivot); a drag is one
+// undo group of absolute edits (the surface previewed as vertex drags are); the panel's curve
+// transforms (Shift+R, Shift+S, about the pivot), sections and operator.
 // Every change is a server edit (shape.ts makes them), so it is checked, undoable,
 // journalled and saved.
 import * as THREE from 'three';
 import type { Edit, ModelState, Vec3 } from './api';
 import { $, readNumber } from './dom';
 import type { NumberRule } from './input';
-import { gizmoSubjects } from './gizmo';
+import { gizmoSubjects, pivotChoice, pivotPlaces } from './gizmo';
+import { axisAngleOf, scaledAlong, turnedBy } from './orientation';
+import { singlePivot } from './selection-transform';
 import { curveEntries, curveMoveEdit, dragEdit, operatorOf, shapeHandles } from './shape';
 import type { CurveEntry, CurveRef, Handle, ShapeEdit, SpineEdit } from './shape';
 import type { Studio } from './studio';
@@ -155,9 +158,9 @@ export function mountCurveEditor(studio: Studio): void {
     return best;
   }
 
-  /** A whole curve being moved (a centre drag or the gizmo): its point handles and centre
-   * mark where they started; each step puts them `d` away and sends the curve `d` from the
-   * drag's start (one absolute edit). */
+  /** A whole curve being moved, turned or scaled (a centre drag or the gizmo): its point
+   * handles and centre mark where they started; each step puts them where the step's map takes
+   * them and sends the curve's edit from the drag's start (one absolute edit). */
   interface CurveMove {
     ref: CurveRef;
     centre: Vec3;
@@ -169,8 +172,7 @@ export function mountCurveEditor(studio: Studio): void {
     const moved = handles.flatMap((h, index) => (h.kind === 'curve' && h.curve === entry.ref ? [{ index, from: h.p }] : []));
     return { ref: entry.ref, centre: entry.centre, mark: centres.findIndex((e) => e.ref === entry.ref), moved };
   }
-  function stepCurveMove(m: CurveMove, d: Vec3): void {
-    const at = (p: Vec3) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]] as Vec3;
+  function stepCurve(m: CurveMove, at: (p: Vec3) => Vec3, edit: ShapeEdit): void {
     for (const { index, from } of m.moved) moveHandle(index, at(from));
     if (m.mark >= 0) {
       const a = centreMarks.geometry.getAttribute('position') as THREE.BufferAttribute;
@@ -178,7 +180,17 @@ export function mountCurveEditor(studio: Studio): void {
       a.needsUpdate = true;
     }
     frameView.invalidate();
-    pump.push(() => send(curveMoveEdit(m.ref, d)));
+    pump.push(() => send(edit));
+  }
+  function stepCurveMove(m: CurveMove, d: Vec3): void {
+    stepCurve(m, (p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]], curveMoveEdit(m.ref, d));
+  }
+  /** The point the chosen curve turns and scales about: the panel's pivot where it names one
+   * place (the cursor, the origin, the handle picked on the curve as the active point), else
+   * the curve's centre. */
+  function curvePivot(entry: CurveEntry): Vec3 {
+    const active = picked?.kind === 'curve' && picked.curve === entry.ref ? picked.p : null;
+    return singlePivot(pivotChoice(), pivotPlaces(studio, active)) ?? entry.centre;
   }
   async function endCurveMove(): Promise<void> {
     await studio.endGesture();
@@ -203,6 +215,7 @@ export function mountCurveEditor(studio: Studio): void {
     $('shape-handle').textContent = describe(h);
     if (choose && (h?.kind === 'curve' || h?.kind === 'tangent')) chooseCurve(h.curve);
     draw();
+    gizmoSubjects.changed?.(); // on a picked control point
   }
   /** Makes `ref` the panel's curve (the one the keys, the gizmo and the buttons act on). */
   function chooseCurve(ref: CurveRef): void {
@@ -310,24 +323,73 @@ export function mountCurveEditor(studio: Studio): void {
     if (!entry) throw new Error('Curve: choose a curve first (click its centre mark, or pick it in the list)');
     return entry;
   };
-  // The move gizmo (G) on the chosen curve's centre; a curve of vectors has none (a
-  // translation leaves vectors as they are).
-  let gizmoMove: CurveMove | null = null;
+  // The gizmo (G) on the chosen curve: its arrows on the curve's centre (a curve of vectors has
+  // none: a translation leaves vectors as they are), its rings (transform-curve: a turn about
+  // the pivot, Fourier curves and vectors too) and boxes (the curve's points scaled along an
+  // axis: move-curve-points; a curve without points cannot scale along one axis) on the pivot.
+  let gizmoMove: (CurveMove & { pivot: Vec3 }) | null = null;
+  // A given control point of a net picked (a net has no curves): the gizmo moves, turns and
+  // scales it alone about the pivot (move-control-points, absolute).
+  const pickedControl = () => (shape() && picked?.kind === 'control' ? picked : null);
+  const controlPivot = (h: Handle) => singlePivot(pivotChoice(), pivotPlaces(studio, h.p)) ?? h.p;
+  let gizmoPoint: { h: Extract<Handle, { kind: 'control' }>; index: number; pivot: Vec3 } | null = null;
+  const stepPoint = (at: (p: Vec3) => Vec3) => {
+    const { h, index } = gizmoPoint!;
+    const target = at(h.p);
+    moveHandle(index, target);
+    pump.push(() => send({ op: 'move-control-points', points: [[h.i, h.j]], positions: [target] }));
+  };
   gizmoSubjects.shape = {
     centre: () => {
+      const control = pickedControl();
+      if (control) return control.p;
       const entry = shape() ? chosen() : null;
       return entry && !entry.vectors ? entry.centre : null;
     },
-    begin: () => {
+    pivot: () => {
+      const control = pickedControl();
+      if (control) return controlPivot(control);
+      const entry = shape() ? chosen() : null;
+      return entry ? curvePivot(entry) : null;
+    },
+    begin: (kind) => {
+      const control = pickedControl();
+      if (control) {
+        gizmoPoint = { h: control, index: handles.findIndex((h) => sameRef(h, control)), pivot: controlPivot(control) };
+        studio.beginGesture('control-point');
+        return true;
+      }
       const entry = chosen();
-      if (entry) gizmoMove = beginCurveMove(entry);
+      if (!entry) return false;
+      if (kind === 'scale' && (entry.vectors || !handles.some((h) => h.kind === 'curve' && h.curve === entry.ref))) {
+        studio.say(`the boxes scale a curve of points along an axis; ${entry.label} has none (Fourier coefficients or vectors): Shift+S scales it by one factor`);
+        return false;
+      }
+      gizmoMove = { ...beginCurveMove(entry), pivot: curvePivot(entry) };
+      return true;
     },
     move: (d) => {
-      if (gizmoMove) stepCurveMove(gizmoMove, d);
+      if (gizmoPoint) stepPoint((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]]);
+      else if (gizmoMove) stepCurveMove(gizmoMove, d);
+    },
+    turn: (q) => {
+      if (gizmoPoint) stepPoint((p) => turnedBy(p, gizmoPoint!.pivot, q));
+      if (!gizmoMove) return;
+      const { pivot, ref } = gizmoMove;
+      const rotate = axisAngleOf(q);
+      stepCurve(gizmoMove, (p) => turnedBy(p, pivot, q), { op: 'transform-curve', curve: ref, rotate, center: pivot, from: 'group-start' });
+    },
+    scale: (f, basis) => {
+      if (gizmoPoint) stepPoint((p) => scaledAlong(p, gizmoPoint!.pivot, basis, f));
+      if (!gizmoMove) return;
+      const { pivot, ref, moved } = gizmoMove;
+      const at = (p: Vec3) => scaledAlong(p, pivot, basis, f);
+      const points = moved.map(({ index }) => (handles[index] as Extract<Handle, { kind: 'curve' }>).point);
+      stepCurve(gizmoMove, at, { op: 'move-curve-points', curve: ref, points, positions: moved.map(({ from }) => at(from)) });
     },
     end: async () => {
-      if (!gizmoMove) return;
-      gizmoMove = null;
+      if (!gizmoMove && !gizmoPoint) return;
+      gizmoMove = gizmoPoint = null;
       await endCurveMove();
     },
   };
@@ -344,13 +406,13 @@ export function mountCurveEditor(studio: Studio): void {
       const axis: Vec3 = [0, 0, 0];
       axis[['x', 'y', 'z'].indexOf($<HTMLSelectElement>('curve-rotate-axis').value)] = 1;
       const entry = chosenCurve();
-      return { op: 'transform-curve', curve: entry.ref, rotate: { axis, degrees: numberOf('curve-rotate-degrees') }, center: entry.centre };
+      return { op: 'transform-curve', curve: entry.ref, rotate: { axis, degrees: numberOf('curve-rotate-degrees') }, center: curvePivot(entry) };
     }),
   );
   $('curve-scale').addEventListener('click', () =>
     once('scaled the curve', () => {
       const entry = chosenCurve();
-      return { op: 'transform-curve', curve: entry.ref, scale: numberOf('curve-scale-factor', { min: 0, nonZero: true }), center: entry.centre };
+      return { op: 'transform-curve', curve: entry.ref, scale: numberOf('curve-scale-factor', { min: 0, nonZero: true }), center: curvePivot(entry) };
     }),
   );
   $('add-section').addEventListener('click', () =>

@@ -3,7 +3,8 @@
 // or B-spline PDE model: on the chosen curve's centre, curve-editor.ts); dragging one moves the
 // selection (the curve) along that axis (or in that plane); or three rings that turn it about
 // each axis, or three boxes that scale it along each axis, on the pivot (the panel's pivot:
-// each vertex turns and scales about its own, selection-transform.ts pivotsOf). The axes are
+// each vertex turns and scales about its own, selection-transform.ts pivotsOf; a curve about
+// its one, and a picked control point of a net alone, curve-editor.ts). The axes are
 // the panel's orientation (global, local, normal: orientation.ts). One undo step per drag, as a
 // dragged handle. three.js's TransformControls draws and solves it; its pointer events are fed
 // from here, ahead of the handles' drag tool and the orbit controls (a press on the gizmo
@@ -15,8 +16,8 @@ import { placeVertices, studioBasis } from './drag';
 import { $ } from './dom';
 import { mirrorPartners, symmetricMove, symmetryPlane } from './symmetry';
 import type { MirrorPlane } from './symmetry';
-import { boxCentre, pivotsOf, selectionPieces } from './selection-transform';
-import type { Pivot } from './selection-transform';
+import { boxCentre, pivotsOf, selectionPieces, singlePivot } from './selection-transform';
+import type { Pivot, PivotPlaces } from './selection-transform';
 import { GLOBAL_BASIS, isGlobal, scaledAlong, turnedBy } from './orientation';
 import type { Basis } from './orientation';
 import type { Studio } from './studio';
@@ -24,12 +25,18 @@ import type { Studio } from './studio';
 /** The gizmo's size (TransformControls' unit: about 1/4 of the view's height per 1). */
 const GIZMO_SIZE = 0.9;
 
-/** What the gizmo moves: where it sits (null: hidden) and a drag's steps (`d`: the offset
- * from the drag's start). */
+/** What the gizmo moves: where its arrows sit (`centre`; null: hidden), where its rings and
+ * boxes sit (`pivot`), and a drag's steps, each the whole change since the drag's start: `move`
+ * by the offset `d`, `turn` by the unit quaternion `q` (x, y, z, w) about the pivot, `scale` by
+ * the factors `f` along the axes `basis` about the pivot. `begin` returns false (and says
+ * why) when the subject cannot take the handles' kind of change. */
 export interface GizmoSubject {
   centre(): Vec3 | null;
-  begin(): void;
+  pivot(): Vec3 | null;
+  begin(kind: GizmoMode): boolean;
   move(d: Vec3): void;
+  turn(q: readonly number[]): void;
+  scale(f: Vec3, basis: Basis): void;
   end(): Promise<void>;
 }
 
@@ -65,12 +72,27 @@ export function selectionVertices(studio: Studio): number[] {
 /** The panel's pivot for scale and rotate. */
 export const pivotChoice = () => ($<HTMLSelectElement>('selection-pivot').value || 'centre') as Pivot;
 
+/** The places a pivot may name: the active vertex (`active`: the one picked last; for curves
+ * the handle picked, curve-editor.ts) and the 3D cursor. */
+export function pivotPlaces(studio: Studio, active?: Vec3 | null): PivotPlaces {
+  const { model, selectedVertex, cursor } = studio.store.state;
+  return { active: active !== undefined ? active : model && selectedVertex !== null ? model.vertices[selectedVertex] : null, cursor };
+}
+
 /** Each of the vertices' pivot (at `points`), as the panel's *pivot* says (selection-transform.ts
  * pivotsOf: the pieces are those of the vertices, the active vertex the store's). */
 export function selectionPivots(studio: Studio, vertices: readonly number[], points: readonly Vec3[]): Vec3[] {
   const model = studio.store.state.model!;
-  const active = studio.store.state.selectedVertex;
-  return pivotsOf(points, pivotChoice(), selectionPieces(vertices, model.frames), active === null ? null : model.vertices[active]);
+  return pivotsOf(points, pivotChoice(), selectionPieces(vertices, model.frames), pivotPlaces(studio));
+}
+
+/** The centre of what is selected: the selected vertices' box (or the selected frames'), or
+ * the chosen curve's centre; null when nothing is (the cursor's *to selection*). */
+export function selectionCentre(studio: Studio): Vec3 | null {
+  const model = studio.store.state.model;
+  if (!model) return gizmoSubjects.shape?.centre() ?? null;
+  const vertices = selectionVertices(studio);
+  return vertices.length ? boxCentre(vertices.map((v) => model.vertices[v])) : null;
 }
 
 export function mountGizmo(studio: Studio): Gizmo {
@@ -117,18 +139,15 @@ export function mountGizmo(studio: Studio): Gizmo {
     pump.push(() => ({ op: 'move-vertices', vertices, positions }));
   };
 
+  /** The vertices turned or scaled by `map` (of a vertex's start and its pivot). */
+  const transform = (map: (p: Vec3, pivot: Vec3) => Vec3) => {
+    if (drag) placeDragged(drag.from.map((p, i) => map(p, drag!.pivots[i])));
+  };
   /** The vertex selection as the gizmo's subject: it moves, turns and scales. */
-  const vertexSubject: GizmoSubject & { transform(map: (p: Vec3, pivot: Vec3) => Vec3): void } = {
-    centre: () => {
-      const model = store.state.model;
-      const vertices = model ? selectionVertices(studio) : [];
-      if (!vertices.length) return null;
-      // The rings and boxes sit on the pivot (a single one), the arrows on the centre.
-      const active = store.state.selectedVertex;
-      if (mode() !== 'translate' && pivotChoice() === 'active' && active !== null) return [...model!.vertices[active]] as Vec3;
-      if (mode() !== 'translate' && pivotChoice() === 'origin') return [0, 0, 0];
-      return boxCentre(vertices.map((v) => model!.vertices[v]));
-    },
+  const vertexSubject: GizmoSubject = {
+    centre: () => selectionCentre(studio),
+    // The rings and boxes sit on the pivot where it is one place, else on the centre.
+    pivot: () => (selectionCentre(studio) && singlePivot(pivotChoice(), pivotPlaces(studio))) ?? selectionCentre(studio),
     begin: () => {
       const model = store.state.model!;
       const moved = selectionVertices(studio);
@@ -137,22 +156,19 @@ export function mountGizmo(studio: Studio): Gizmo {
       const plane = symmetryPlane($<HTMLSelectElement>('symmetry').value, model.vertices);
       drag = { moved, from, pivots, mirror: plane && { plane, found: mirrorPartners(model.vertices, moved, from, plane) } };
       studio.beginGesture('gizmo');
+      return true;
     },
-    move: (d) => {
-      if (drag) placeDragged(drag.from.map((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]] as Vec3));
-    },
-    transform: (map) => {
-      if (drag) placeDragged(drag.from.map((p, i) => map(p, drag!.pivots[i])));
-    },
+    move: (d) => transform((p) => [p[0] + d[0], p[1] + d[1], p[2] + d[2]]),
+    turn: (q) => transform((p, pivot) => turnedBy(p, pivot, q)),
+    scale: (f, axes) => transform((p, pivot) => scaledAlong(p, pivot, axes, f)),
     end: async () => {
       drag = null;
       await studio.endGesture();
       store.update(['model'], () => {});
     },
   };
-  // Curves (gizmoSubjects.shape) only move: the rings and boxes are the vertex selection's.
-  const subject = (): GizmoSubject | null =>
-    store.state.model ? vertexSubject : store.state.shape && mode() === 'translate' ? (gizmoSubjects.shape ?? null) : null;
+  /** The vertex selection, or the chosen curve of the other model types (curve-editor.ts). */
+  const subject = (): GizmoSubject | null => (store.state.model ? vertexSubject : store.state.shape ? (gizmoSubjects.shape ?? null) : null);
   /** Where the drag in progress started (null: none), and the proxy's turn then. */
   let dragStart: THREE.Vector3 | null = null;
   let turnStart = new THREE.Quaternion();
@@ -168,7 +184,8 @@ export function mountGizmo(studio: Studio): Gizmo {
   const place = (_state?: unknown, topics?: ReadonlySet<string>) => {
     if (dragStart) return; // the drag moves the proxy itself
     if (!topics || topics.has('model') || topics.has('selection')) orient();
-    const centre = subject()?.centre() ?? null;
+    // The arrows on the centre, the rings and boxes on the pivot.
+    const centre = (mode() === 'translate' ? subject()?.centre() : subject()?.pivot()) ?? null;
     const wasVisible = helper.visible;
     helper.visible = on && centre !== null;
     controls.enabled = helper.visible;
@@ -194,6 +211,7 @@ export function mountGizmo(studio: Studio): Gizmo {
   });
   modeBox?.addEventListener('change', () => setMode(mode()));
   for (const id of ['orientation', 'selection-pivot']) document.querySelector(`[data-testid="${id}"]`)?.addEventListener('change', () => place());
+  store.subscribe(['cursor'], () => place()); // on the cursor, when it is the pivot
 
   controls.addEventListener('change', () => frameView.invalidate());
   // The subject of a drag is kept from its press to its release.
@@ -203,7 +221,7 @@ export function mountGizmo(studio: Studio): Gizmo {
     if (!dragging) return;
     dragStart = proxy.position.clone();
     turnStart = proxy.quaternion.clone();
-    dragging.begin();
+    if (!dragging.begin(mode())) dragging = null;
   });
   controls.addEventListener('objectChange', () => {
     if (!dragging || !dragStart) return;
@@ -211,14 +229,13 @@ export function mountGizmo(studio: Studio): Gizmo {
     if (kind === 'translate') {
       const d = proxy.position.clone().sub(dragStart);
       dragging.move([d.x, d.y, d.z]);
-    } else if (dragging === vertexSubject && kind === 'rotate') {
-      // The turn since the press, in world axes, about each vertex's pivot.
+    } else if (kind === 'rotate') {
+      // The turn since the press, in world axes, about the pivot (each vertex's own).
       const q = proxy.quaternion.clone().multiply(turnStart.clone().invert());
-      vertexSubject.transform((p, pivot) => turnedBy(p, pivot, [q.x, q.y, q.z, q.w]));
-    } else if (dragging === vertexSubject) {
+      dragging.turn([q.x, q.y, q.z, q.w]);
+    } else {
       // Scale along the gizmo's axes (TransformControls scales in the proxy's own).
-      const f: Vec3 = [proxy.scale.x, proxy.scale.y, proxy.scale.z];
-      vertexSubject.transform((p, pivot) => scaledAlong(p, pivot, basis, f));
+      dragging.scale([proxy.scale.x, proxy.scale.y, proxy.scale.z], basis);
     }
   });
   controls.addEventListener('mouseUp', () => {
@@ -226,6 +243,7 @@ export function mountGizmo(studio: Studio): Gizmo {
     dragging = null;
     dragStart = null;
     if (was) void was.end().then(() => place());
+    else place(); // a drag the subject refused: the handles back as they were
   });
 
   // The pointer, fed to the controls in the capture phase of the view's container (before
@@ -283,8 +301,7 @@ export function mountGizmo(studio: Studio): Gizmo {
       const next = on ? GIZMO_MODES[(GIZMO_MODES.indexOf(mode()) + 1) % GIZMO_MODES.length] : mode();
       if (!on) toggle();
       setMode(next);
-      const curves = !store.state.model && store.state.shape && next !== 'translate';
-      studio.say(`gizmo: ${next === 'translate' ? 'move' : next}${curves ? " (a curve takes the arrows only: Shift+R and Shift+S turn and scale it)" : ''}`);
+      studio.say(`gizmo: ${next === 'translate' ? 'move' : next}${next === 'translate' ? '' : `, about ${$<HTMLSelectElement>('selection-pivot').selectedOptions[0]?.textContent ?? 'the pivot'}`}`);
     },
     handleScreen(axis, angle = 0) {
       if (!helper.visible) return null;

@@ -6,6 +6,7 @@
 import './style.css';
 import { mountAnalysis } from './analysis';
 import { mountCurveEditor } from './curve-editor';
+import { mountCursor } from './cursor-tool';
 import { mountDragTool } from './drag';
 import { mountKeys } from './keys';
 import { mountModeller } from './modeller';
@@ -32,6 +33,7 @@ mountTransform(studio);
 const toolbar = mountToolbar(studio);
 mountAnalysis(studio);
 const modeller = mountModeller(studio, toolbar.mayLeave, toolbar.refreshFiles, dragTool);
+mountCursor(studio);
 mountSolver(studio);
 mountKeys(studio, mountViews(studio), modeller);
 

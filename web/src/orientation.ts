@@ -159,3 +159,15 @@ export function turnedBy(p: readonly number[], centre: readonly number[], q: rea
   const u = cross([x, y, z], t);
   return [0, 1, 2].map((c) => centre[c] + r[c] + w * t[c] + u[c]) as Vec3;
 }
+
+/** The turn of the unit quaternion (x, y, z, w) as an axis (a unit vector) and an angle in
+ * degrees (0 to 180, the axis flipped for the shorter way round), the form the server's
+ * transforms take; a turn smaller than rounding has angle 0 about z. */
+export function axisAngleOf(q: readonly number[]): { axis: Vec3; degrees: number } {
+  const sign = q[3] < 0 ? -1 : 1; // q and −q are one turn: the one with w ≥ 0 turns ≤ 180°
+  const v = [sign * q[0], sign * q[1], sign * q[2]];
+  const axis = unit(v);
+  const s = Math.hypot(v[0], v[1], v[2]);
+  if (!axis || s < 1e-15) return { axis: [0, 0, 1], degrees: 0 };
+  return { axis, degrees: (2 * Math.atan2(s, sign * q[3]) * 180) / Math.PI };
+}

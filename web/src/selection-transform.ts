@@ -41,8 +41,16 @@ export function rotatedAbout(points: readonly Vec3[], centre: Vec3, axis: 'x' | 
 
 /** What the selection's scale and rotate turn about (the panel's *pivot*): the centre of the
  * selection's box, each piece's own centre (Blender's individual origins), the active vertex
- * (the last one picked), or the origin. */
-export type Pivot = 'centre' | 'pieces' | 'active' | 'origin';
+ * (the last one picked), the 3D cursor (a point the user places: cursor-tool.ts), or the
+ * origin. */
+export type Pivot = 'centre' | 'pieces' | 'active' | 'cursor' | 'origin';
+
+/** The places a pivot may need besides the points: the active vertex (null: none, the
+ * selection's centre instead) and the 3D cursor. */
+export interface PivotPlaces {
+  active: Vec3 | null;
+  cursor: Vec3;
+}
 
 /** The pieces of a selection: its vertices (as indices into `vertices`) grouped by the piece
  * of the model they lie on (frames joined through shared vertices are one piece, as select
@@ -62,11 +70,20 @@ export function selectionPieces(vertices: readonly number[], frames: readonly { 
   return [...pieces.values()];
 }
 
+/** The one pivot of every point, where the choice names one place (the active vertex, the
+ * cursor, the origin); null where each point's pivot follows from the points (centres). */
+export function singlePivot(pivot: Pivot, places: PivotPlaces): Vec3 | null {
+  if (pivot === 'origin') return [0, 0, 0];
+  if (pivot === 'cursor') return [...places.cursor];
+  if (pivot === 'active' && places.active) return [...places.active];
+  return null;
+}
+
 /** Each point's pivot: `pieces` groups the points (indices into `points`, selectionPieces);
- * `active` is the active vertex's place (null: none, the selection's centre instead). */
-export function pivotsOf(points: readonly Vec3[], pivot: Pivot, pieces: readonly number[][], active: Vec3 | null): Vec3[] {
-  if (pivot === 'origin') return points.map(() => [0, 0, 0]);
-  if (pivot === 'active' && active) return points.map(() => active);
+ * `places` the active vertex's and the cursor's (singlePivot). */
+export function pivotsOf(points: readonly Vec3[], pivot: Pivot, pieces: readonly number[][], places: PivotPlaces): Vec3[] {
+  const single = singlePivot(pivot, places);
+  if (single) return points.map(() => single);
   const out: Vec3[] = points.map(() => [0, 0, 0]);
   for (const piece of pivot === 'pieces' ? pieces : [points.map((_, i) => i)]) {
     const centre = boxCentre(piece.map((i) => points[i]));

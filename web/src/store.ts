@@ -1,7 +1,7 @@
 // The page's state and the one way to change it (as the three.js editor's Editor and its
 // signals): every write goes through Store.update, which names the topics it touched; the renderers subscribed to those topics run once, together, in the
 // next microtask. Nothing else writes the state or calls a renderer.
-import type { MeshData, Model, ModelView, Status } from './api';
+import type { MeshData, Model, ModelView, Status, Vec3 } from './api';
 
 export interface State {
   /** The model file, relative to the studio's root. */
@@ -25,6 +25,9 @@ export interface State {
   selectedFrames: Set<number>;
   /** The selected force of a single selected frame (index in its forces). */
   selectedForce: number;
+  /** The 3D cursor: a point the user places (cursor-tool.ts), a pivot for rotate and scale;
+   * the view's, not the model's (kept by the browser per model file, never in the file). */
+  cursor: Vec3;
   mesh: MeshData | null;
   /** Live is off and the model changed since the last mesh. */
   meshStale: boolean;
@@ -40,8 +43,9 @@ export interface State {
  * - selection: the selected vertex, frames or force
  * - forces: the forces of the selection (the force list)
  * - mesh: a new surface mesh (or its staleness)
- * - status: revision, undo depth, dirty, path, recovery, error, message */
-export type Topic = 'model' | 'vertex' | 'selection' | 'forces' | 'mesh' | 'status';
+ * - status: revision, undo depth, dirty, path, recovery, error, message
+ * - cursor: the 3D cursor moved */
+export type Topic = 'model' | 'vertex' | 'selection' | 'forces' | 'mesh' | 'status' | 'cursor';
 
 export type Listener = (state: Readonly<State>, topics: ReadonlySet<Topic>) => void;
 
@@ -58,6 +62,7 @@ export function initialState(): State {
     selectedVertices: [],
     selectedFrames: new Set(),
     selectedForce: 0,
+    cursor: [0, 0, 0],
     mesh: null,
     meshStale: false,
     meshDeltas: 0,

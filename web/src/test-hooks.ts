@@ -6,6 +6,7 @@ import { api } from './api';
 import { modellerTools } from './modeller';
 import type { Edit } from './api';
 import { positionsBox } from './transform';
+import { onSurface } from './snap';
 import type { Studio } from './studio';
 
 declare global {
@@ -148,6 +149,18 @@ export function installTestHooks(studio: Studio): void {
     vertexSurfaceScreen: (v: number) => {
       const p = store.state.model?.vertices[v];
       return p ? surfaceView.toClient(new THREE.Vector3(...p)) : null;
+    },
+    /** The 3D cursor (cursor-tool.ts), and where it is on screen in each view. */
+    cursor: () => ({
+      p: [...store.state.cursor],
+      frame: frameView.toClient(new THREE.Vector3(...store.state.cursor)),
+      surface: surfaceView.toClient(new THREE.Vector3(...store.state.cursor)),
+    }),
+    /** The point of the surface shown under a client point of the frame view (what a drag
+     * there snaps onto), or null. */
+    surfaceUnder: (x: number, y: number) => {
+      surfaceView.mesh.geometry.computeBoundingSphere();
+      return onSurface(surfaceView.mesh, frameView, x, y);
     },
     /** The page's surface mesh positions, flat xyz. */
     meshPositions: () => Array.from(store.state.mesh?.positions ?? []),

@@ -2,7 +2,7 @@
 // the maps that use them (a turn about any axis, a scale along a basis, a quaternion's turn).
 import { describe, expect, it } from 'vitest';
 import type { Model, Vec3 } from '../src/api';
-import { basisFrom, frameBasis, fromBasis, GLOBAL_BASIS, meshNormalNear, rotatedAboutAxis, scaledAlong, selectionBasis, toBasis, turnedBy } from '../src/orientation';
+import { axisAngleOf, basisFrom, frameBasis, fromBasis, GLOBAL_BASIS, meshNormalNear, rotatedAboutAxis, scaledAlong, selectionBasis, toBasis, turnedBy } from '../src/orientation';
 import type { Basis } from '../src/orientation';
 
 /** Rounding of a few operations on numbers near 1. */
@@ -92,5 +92,20 @@ describe('maps along a basis', () => {
   it('turnedBy a quaternion is the same turn', () => {
     // A quarter turn about z: (x, y, z, w) = (0, 0, sin 45°, cos 45°).
     expect(near(turnedBy([2, 1, 5], [1, 1, 0], [0, 0, r, r]), [1, 2, 5])).toBe(true);
+  });
+
+  it("gives a quaternion's turn as the axis and degrees the server's transforms take", () => {
+    // 120° about (1, 1, 1)/√3, and the same turn as −q; the axis-angle form turns as q does.
+    const axis: Vec3 = [1 / Math.sqrt(3), 1 / Math.sqrt(3), 1 / Math.sqrt(3)];
+    const h = Math.PI / 3; // half of 120°
+    const q = [...axis.map((c) => c * Math.sin(h)), Math.cos(h)];
+    for (const sign of [1, -1]) {
+      const t = axisAngleOf(q.map((c) => sign * c));
+      expect(near(t.axis, axis)).toBe(true);
+      expect(Math.abs(t.degrees - 120)).toBeLessThan(ROUNDING);
+      const p: Vec3 = [0.3, -2, 5], c: Vec3 = [1, 2, 3];
+      expect(near(rotatedAboutAxis([p], c, t.axis, t.degrees)[0], turnedBy(p, c, q))).toBe(true);
+    }
+    expect(axisAngleOf([0, 0, 0, 1])).toEqual({ axis: [0, 0, 1], degrees: 0 });
   });
 });

@@ -1,7 +1,7 @@
 // Scaling and turning the vertex selection about its centre.
 import { describe, expect, it } from 'vitest';
 import type { Vec3 } from '../src/api';
-import { boxCentre, pivotsOf, rotatedAbout, scaledAbout, selectionPieces } from '../src/selection-transform';
+import { boxCentre, pivotsOf, rotatedAbout, scaledAbout, selectionPieces, singlePivot } from '../src/selection-transform';
 
 /** Rounding of a few operations on numbers near 1. */
 const ROUNDING = 1e-12;
@@ -56,13 +56,38 @@ describe('pivots', () => {
     expect(selectionPieces([0, 1, 4, 8], frames)).toEqual([[0, 1], [2, 3]]);
     expect(selectionPieces([2, 9], frames)).toEqual([[0], [1]]);
   });
-  it('gives each point its pivot: the box centre, the centre of its piece, the active vertex, the origin', () => {
+  it('gives each point its pivot: the box centre, the centre of its piece, the active vertex, the cursor, the origin', () => {
     const points: Vec3[] = [[0, 0, 0], [1, 2, 0], [4, 0, 0], [6, 2, 2]];
     const pieces = [[0, 1], [2, 3]];
-    expect(pivotsOf(points, 'centre', pieces, null)).toEqual(points.map(() => [3, 1, 1]));
-    expect(pivotsOf(points, 'pieces', pieces, null)).toEqual([[0.5, 1, 0], [0.5, 1, 0], [5, 1, 1], [5, 1, 1]]);
-    expect(pivotsOf(points, 'active', pieces, [9, 9, 9])).toEqual(points.map(() => [9, 9, 9]));
-    expect(pivotsOf(points, 'active', pieces, null)).toEqual(points.map(() => [3, 1, 1]));
-    expect(pivotsOf(points, 'origin', pieces, null)).toEqual(points.map(() => [0, 0, 0]));
+    const cursor: Vec3 = [-1, 7, 0.5];
+    const none = { active: null, cursor };
+    expect(pivotsOf(points, 'centre', pieces, none)).toEqual(points.map(() => [3, 1, 1]));
+    expect(pivotsOf(points, 'pieces', pieces, none)).toEqual([[0.5, 1, 0], [0.5, 1, 0], [5, 1, 1], [5, 1, 1]]);
+    expect(pivotsOf(points, 'active', pieces, { active: [9, 9, 9], cursor })).toEqual(points.map(() => [9, 9, 9]));
+    expect(pivotsOf(points, 'active', pieces, none)).toEqual(points.map(() => [3, 1, 1]));
+    expect(pivotsOf(points, 'cursor', pieces, none)).toEqual(points.map(() => cursor));
+    expect(pivotsOf(points, 'origin', pieces, none)).toEqual(points.map(() => [0, 0, 0]));
+  });
+  it('names one place for the active vertex, the cursor and the origin, none for the centres', () => {
+    const cursor: Vec3 = [2, 0.5, 0];
+    expect(singlePivot('cursor', { active: [1, 1, 1], cursor })).toEqual(cursor);
+    expect(singlePivot('active', { active: [1, 1, 1], cursor })).toEqual([1, 1, 1]);
+    expect(singlePivot('active', { active: null, cursor })).toBeNull();
+    expect(singlePivot('origin', { active: null, cursor })).toEqual([0, 0, 0]);
+    expect(singlePivot('centre', { active: [1, 1, 1], cursor })).toBeNull();
+    expect(singlePivot('pieces', { active: [1, 1, 1], cursor })).toBeNull();
+  });
+  it('turns and scales about the cursor: distances to it kept by a turn, multiplied by a scale', () => {
+    const cursor: Vec3 = [2, 0.5, 0];
+    const pivots = pivotsOf(square, 'cursor', [[0, 1, 2, 3]], { active: null, cursor });
+    const turned = square.map((p, i) => rotatedAbout([p], pivots[i], 'z', 90)[0]);
+    const scaled = square.map((p, i) => scaledAbout([p], pivots[i], 3)[0]);
+    const distance = (p: Vec3) => Math.hypot(p[0] - cursor[0], p[1] - cursor[1], p[2] - cursor[2]);
+    square.forEach((p, i) => {
+      expect(Math.abs(distance(turned[i]) - distance(p))).toBeLessThan(ROUNDING);
+      expect(Math.abs(distance(scaled[i]) - 3 * distance(p))).toBeLessThan(ROUNDING);
+    });
+    // A quarter turn about z through (2, 0.5): (1, 1) goes to (1.5, -0.5), exactly.
+    expect(turned[0]).toEqual([1.5, -0.5, 2]);
   });
 });
