@@ -10,6 +10,7 @@
 
 #include "http_error.hpp"
 #include "pdesurf/atomic_file.hpp"
+#include "pdesurf/method.hpp"
 #include "pdesurf/model_io.hpp"
 
 namespace pdesurf::studio {
@@ -17,9 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
-
-/// The spine points a spectral model shows to drag (GET /api/model's view.spineHandles).
-constexpr std::uint32_t kSpineHandles = 9;
 
 std::string readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -104,12 +102,43 @@ std::string Document::modelText() const {
 
 Json Document::viewCurves() {
   const ModelOverlay view = overlay(session_->solved());
-  Json out = {{"curves", polylines(view.curves)}, {"spines", polylines(view.spines)}};
-  // A spectral model's spine points to drag (as `pdesurf spine --count` places them).
-  const SpineHandles spine = spineHandles(session_->solved(), kSpineHandles);
-  if (!spine.u.empty())
-    out["spineHandles"] = {{"u", spine.u}, {"points", polylines({spine.points})[0]}};
-  return out;
+  return {{"curves", polylines(view.curves)}, {"spines", polylines(view.spines)}};
+}
+
+Json Document::handles() {
+  const ModelHandles handles = session_->model().method().handles(session_->solved());
+  const auto ref = [](const CurveRef& r) { return r.name.empty() ? Json(r.index) : Json(r.name); };
+  const auto xyz = [](const Vec3& p) { return Json::array({p.x(), p.y(), p.z()}); };
+  Json points = Json::array();
+  for (const ModelHandle& h : handles.points) {
+    Json j;
+    switch (h.kind) {
+      case ModelHandle::Kind::CurvePoint:
+        j = {{"kind", "curve"}, {"curve", ref(h.curve)}, {"point", h.index}};
+        break;
+      case ModelHandle::Kind::Tangent:
+        j = {{"kind", "tangent"}, {"curve", ref(h.curve)}, {"point", h.index}};
+        j["base"] = xyz(h.base);
+        if (h.mean) j["mean"] = true;
+        break;
+      case ModelHandle::Kind::ControlPoint:
+        j = {{"kind", "control"}, {"i", h.index}, {"j", h.column}};
+        break;
+      case ModelHandle::Kind::SpinePoint:
+        j = {{"kind", "spine"}, {"index", h.index}, {"u", h.u}};
+        break;
+    }
+    j["p"] = xyz(h.position);
+    points.push_back(std::move(j));
+  }
+  Json curves = Json::array();
+  for (const HandleCurve& c : handles.curves)
+    curves.push_back({{"ref", ref(c.ref)},
+                      {"label", c.label},
+                      {"centre", xyz(c.centre)},
+                      {"vectors", c.vectors}});
+  return {
+      {"points", std::move(points)}, {"curves", std::move(curves)}, {"tangentDraw", kTangentDraw}};
 }
 
 void Document::autosave() {

@@ -58,9 +58,13 @@ class Document {
   /// serializeModel writes it. A model with editable parts is always written by
   /// serializeModel.
   std::string modelText() const;
-  /// What the frame view draws for a view-only model (overlay()): polylines as JSON, and a
-  /// spectral model's spine handles.
+  /// What the frame view draws for a model without editable parts (overlay()): polylines as
+  /// JSON.
   nlohmann::json viewCurves();
+  /// The handles and curves its method exposes to drag (SurfaceMethod::handles) as JSON:
+  /// {"points": [{"kind", its reference, "p"}...], "curves": [{"ref", "label", "centre",
+  /// "vectors"}...], "tangentDraw"} (apps/studio/README.md).
+  nlohmann::json handles();
 
  private:
   void replaceSession(AnyModel model, const std::string& source);

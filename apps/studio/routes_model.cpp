@@ -18,10 +18,11 @@ void addModelRoutes(const Studio& studio) {
   studio.server.Get("/api/model",
                     studio.guarded([&doc](const httplib::Request&, httplib::Response& res) {
                       Json out = doc.openedStatus();
-                      out["editable"] = doc.session().hasEditableParts();
+                      out["hasEditableParts"] = doc.session().hasEditableParts();
                       out["model"] = Json::parse(doc.modelText());
                       if (!doc.session().hasEditableParts()) {
                         out["view"] = doc.viewCurves();
+                        out["handles"] = doc.handles();
                         out["dragAdvice"] = dragAdvice(doc.session().model());
                       }
                       sendJson(res, out);

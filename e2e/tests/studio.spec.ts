@@ -255,7 +255,7 @@ test.describe('a spectral model', () => {
     await openStudio(page, studio);
     await expect(page.getByTestId('status')).toContainText('spectral model: drag its handles');
     await expect(page.getByTestId('status')).toContainText('triangles');
-    expect((await studio.state()).editable).toBe(false);
+    expect((await studio.state()).hasEditableParts).toBe(false);
     await expect(page.getByTestId('frame-caption')).toHaveText('Curves and spine');
     await expect(page.getByTestId('frame-tools')).toBeHidden();
     await page.waitForTimeout(300);
@@ -290,7 +290,7 @@ test.describe('transforming a spectral model', () => {
       expect(after.max[c]).toBeCloseTo(before.max[c] + shift[c], 4);
     }
     const s = await studio.state();
-    expect(s.editable).toBe(false);
+    expect(s.hasEditableParts).toBe(false);
     expect(s.undo).toBe(1);
     expect(s.dirty).toBe(true);
     expect(s.model.type).toBe('spectral');

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <any>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -73,6 +74,59 @@ struct EditResult {
   bool ownStep = false;
 };
 
+/// A curve of a model: a spectral model's condition (`index`), a cross-section (`index`),
+/// or a B-spline PDE model's curve by its file name (`name`: "uMin", "uMax", "vMin", "vMax",
+/// "uMinSecond", "vMinSecond" of the boundary form; "uMin".."vMax" of the blend, "start",
+/// "end" of the closed blend).
+struct CurveRef {
+  std::uint32_t index = 0;
+  std::string name;  ///< B-spline PDE models only
+};
+
+/// A shape edit's tangent (a derivative condition's or a tangent row's vector) is drawn from
+/// its base point on the position curve to its tip handle at base + kTangentDraw × vector: a
+/// tangent is a derivative (a length per unit of u), often longer than the model; a quarter
+/// keeps its tip near the surface and its direction plain.
+constexpr double kTangentDraw = 0.25;
+
+/// A point of a model that a user drags to edit it (SurfaceMethod::handles): what it is,
+/// what it names in the model (the edit its drag makes) and where it is drawn.
+struct ModelHandle {
+  enum class Kind {
+    CurvePoint,    ///< point `index` of `curve` (a curve given as points)
+    Tangent,       ///< the tip of vector `index` of `curve` (`mean`: a Fourier curve's a0)
+    ControlPoint,  ///< the given control point (`index`, `column`) = (i, j) of a net
+    SpinePoint,    ///< spine point `index`, at `u`
+  };
+  Kind kind = Kind::CurvePoint;
+  CurveRef curve;
+  std::uint32_t index = 0;
+  std::uint32_t column = 0;
+  Vec3 position = Vec3::Zero();
+  /// Tangent: the point its vector is drawn from (position = base + kTangentDraw × vector).
+  Vec3 base = Vec3::Zero();
+  bool mean = false;
+  double u = 0.0;
+};
+
+/// A curve a model's shape edits move whole (SurfaceMethod::handles): the curve, its label,
+/// the centre turns and scales pivot on (the mean of its points, or a Fourier curve's a0),
+/// and whether it holds vectors (a derivative condition, a tangent row: no translation; turns
+/// and scales through the map's linear part).
+struct HandleCurve {
+  CurveRef ref;
+  std::string label;
+  Vec3 centre = Vec3::Zero();
+  bool vectors = false;
+};
+
+/// What a model offers to drag: its handles and its curves, in the order the method lists
+/// them.
+struct ModelHandles {
+  std::vector<ModelHandle> points;
+  std::vector<HandleCurve> curves;
+};
+
 /// One surface method. The built-in ones are in src/methods/; a program adds its own with
 /// registerMethod (tests/model/toy_method_test.cpp adds a bilinear Coons method).
 class SurfaceMethod {
@@ -129,6 +183,13 @@ class SurfaceMethod {
   /// model only when asked and keeps no solution for undo. Without them (the default) every
   /// model a session makes is solved at once, its solver's refusal refusing the edit.
   virtual bool hasEditableParts() const { return false; }
+
+  /// The handles and curves of the model's shape edits (spectral: its curves' points,
+  /// tangent tips and spine points; B-spline PDE: its curves' points, tangent tips and a net's
+  /// given control points), placed on `solved` where they are not the model's own points (a
+  /// spine). The default: none (vertex frames: their handles are the model's vertices, which
+  /// the studio's frame tools edit).
+  virtual ModelHandles handles(const SolvedModel& solved) const;
 };
 
 /// Adds a method to the registry, after the built-in ones. Throws InvalidArgument when

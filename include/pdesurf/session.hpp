@@ -152,18 +152,11 @@ struct GroupedEdit {
 };
 
 // Edits of spectral, cross-section and B-spline PDE models (ShapeEdit: parsed and applied by
-// their methods, src/methods/shape_edits.cpp). Each names what it changes as the model file
-// does; the method checks the result as the file parser would and solves it, refusing the
-// edit (a ModelError with the reason, the session unchanged) when either fails.
+// their methods: src/methods/shape_edits/ and each method's folder). Each names what it changes as
+// the model file does; the method checks the result as the file parser would and solves it,
+// refusing the edit (a ModelError with the reason, the session unchanged) when either fails.
 
-/// A curve of a model: a spectral model's condition (`index`), a cross-section (`index`),
-/// or a B-spline PDE model's curve by its file name (`name`: "uMin", "uMax", "vMin", "vMax",
-/// "uMinSecond", "vMinSecond" of the boundary form; "uMin".."vMax" of the blend, "start",
-/// "end" of the closed blend).
-struct CurveRef {
-  std::uint32_t index = 0;
-  std::string name;  ///< B-spline PDE models only
-};
+// The curves they name: CurveRef (method.hpp).
 /// Moves points of a curve given as points (a B-spline curve's control points, a boundary
 /// curve's samples, a second row's points) to absolute positions: one drag step.
 struct MoveCurvePoints {

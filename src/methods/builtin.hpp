@@ -1,27 +1,27 @@
 // The built-in surface methods (include/pdesurf/method.hpp), private to src/methods/: each
-// method's description is defined in its own file beside its solved surface.
+// method's description is defined in its own folder beside its solved surface and its edits.
 #pragma once
 
 #include <cstdint>
 #include <typeindex>
 #include <vector>
 
-#include "methods/shape_edits.hpp"
 #include "pdesurf/edit_io.hpp"
 #include "pdesurf/method.hpp"
 
 namespace pdesurf::detail {
 
-const SurfaceMethod& vertexFramesMethod();   // vertex_frames.cpp
-const SurfaceMethod& spectralMethod();       // spectral.cpp
-const SurfaceMethod& crossSectionsMethod();  // spectral.cpp
-const SurfaceMethod& bsplinePdeMethod();     // bspline_pde.cpp
+const SurfaceMethod& vertexFramesMethod();   // vertex_frames/method.cpp
+const SurfaceMethod& spectralMethod();       // spectral/method.cpp
+const SurfaceMethod& crossSectionsMethod();  // cross_sections/method.cpp
+const SurfaceMethod& bsplinePdeMethod();     // bspline_pde/method.cpp
 
 /// What every method over a model struct `Model` with a `name` and a transformModel
 /// overload shares: its C++ type, its name, its transform.
 template <class Model>
 class MethodOf : public SurfaceMethod {
  public:
+  using ModelType = Model;
   std::type_index modelType() const override { return typeid(Model); }
   const std::string& name(const AnyModel& model) const override { return model.get<Model>().name; }
   AnyModel transform(const AnyModel& model, const AffineMap& map) const override {
@@ -57,21 +57,6 @@ class OptionlessMethod : public MethodOf<Model> {
   const char* type_;
   Parse parse_;
   Solve solve_;
-};
-
-/// A method whose edits are shape edits (ShapeEdit, session.hpp: its curves, nets, spines
-/// and operators): spectral, cross-sections, B-spline PDE (shape_edits.cpp).
-template <class Base>
-class ShapeEditedMethod : public Base {
- public:
-  using Base::Base;
-  ModelEdit parseEdit(std::string_view json, const AnyModel& model) const override {
-    GroupedShapeEdit e = parseShapeEdit(json, model);
-    return {std::move(e.edit), std::move(e.group)};
-  }
-  EditResult applyEdit(const EditContext& context, const ModelEdit& edit) const override {
-    return applyShapeEdit(context, edit);
-  }
 };
 
 /// points[j*n+i] = f(i, j): a patch's samples.

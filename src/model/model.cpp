@@ -84,6 +84,8 @@ std::shared_ptr<const FrameTopology> SurfaceMethod::topology(const AnyModel&) co
   return nullptr;
 }
 
+ModelHandles SurfaceMethod::handles(const SolvedModel&) const { return {}; }
+
 Mesh tessellate(const SolvedModel& solved, const TessellateOptions& options) {
   return solved.surface().tessellate(options);
 }

@@ -13,7 +13,7 @@
 
 #include <fmt/format.h>
 
-#include "methods/curve_target.hpp"
+#include "methods/shape_edits/shape_edits.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/edit_io.hpp"
 #include "pdesurf/mesh_distance.hpp"

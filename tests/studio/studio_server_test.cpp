@@ -35,6 +35,7 @@
 
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/method.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "server.hpp"
@@ -772,7 +773,7 @@ TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedAndRefuseVertexE
   const auto opened = post("/api/open", R"({"path": "tube.json"})");
   ASSERT_EQ(opened->status, 200) << opened->body;
   const Json m = model();
-  EXPECT_EQ(m["editable"], false);
+  EXPECT_EQ(m["hasEditableParts"], false);
   EXPECT_EQ(m["model"]["type"], "spectral");
   EXPECT_EQ(m["view"]["curves"].size(), 2u);  // the two position curves
   EXPECT_EQ(m["view"]["spines"].size(), 1u);
@@ -805,7 +806,7 @@ TEST_F(StudioServerTest, SpectralModelsAreShownExportedAndCopiedAndRefuseVertexE
   // Back to a vertex-frame model: editable again, revisions still increasing.
   ASSERT_EQ(post("/api/open", R"({"path": "grid.json"})")->status, 200);
   const Json g = model();
-  EXPECT_EQ(g["editable"], true);
+  EXPECT_EQ(g["hasEditableParts"], true);
   EXPECT_GT(g["revision"].get<int>(), m["revision"].get<int>());
   EXPECT_EQ(post("/api/edit", move(0, 0, 0, 0.2))->status, 200);
 }
@@ -895,7 +896,7 @@ TEST_F(StudioServerTest, SpectralModelsAreTransformedUndoneSavedAndJournaled) {
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
   Json m = model();
-  EXPECT_EQ(m["editable"], false);
+  EXPECT_EQ(m["hasEditableParts"], false);
   EXPECT_EQ(m["undo"], 1);
   EXPECT_EQ(m["dirty"], true);
   EXPECT_EQ(m["model"]["conditions"][1]["curve"]["fourier"]["a0"], Json({0, 0, 5}));
@@ -946,7 +947,18 @@ TEST_F(StudioServerTest, ShapeEditsAreCheckedUndoneAndSavedByteForByte) {
   const std::string original = readText(root_ / "tube.json");
   ASSERT_EQ(post("/api/open", R"({"path": "tube.json"})")->status, 200);
   const Json opened = model();
-  ASSERT_EQ(opened["view"]["spineHandles"]["u"].size(), 9u);  // as `pdesurf spine --count 9`
+  // The handles its method exposes (SurfaceMethod::handles): nine spine points at their u (as
+  // `pdesurf spine --count 9`), the Fourier tangent's mean tip drawn from its curve's a0.
+  const Json& handles = opened["handles"];
+  std::size_t spine = 0, means = 0;
+  for (const Json& h : handles["points"]) {
+    spine += h["kind"] == "spine" && h.contains("u");
+    means += h["kind"] == "tangent" && h.value("mean", false);
+  }
+  EXPECT_EQ(spine, 9u);
+  EXPECT_GE(means, 1u);
+  EXPECT_EQ(handles["tangentDraw"], kTangentDraw);
+  EXPECT_EQ(handles["curves"].size(), opened["model"]["conditions"].size());
   const auto moved = post("/api/edit?mesh=1&resolution=5",
                           R"({"op": "transform-curve", "curve": 2, "translate": [0, 0, 1]})");
   ASSERT_EQ(moved->status, 200) << moved->body;
@@ -973,7 +985,7 @@ TEST_F(StudioServerTest, BSplineModelsAreShownTransformedAndSaved) {
   ASSERT_EQ(post("/api/open", R"({"path": "tube.json"})")->status, 200);
   Json m = model();
   EXPECT_EQ(m["model"]["type"], "bspline-pde");
-  EXPECT_EQ(m["editable"], false);
+  EXPECT_EQ(m["hasEditableParts"], false);
   // Two pieces of 7 × 7 control points: 7 rows and 7 columns each.
   EXPECT_EQ(m["view"]["curves"].size(), 2u * 14u);
   const MeshData before = mesh("?resolution=9");

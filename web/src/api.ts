@@ -2,6 +2,7 @@
 // the front-end goes through this module, and carries the studio's per-launch token.
 import { ApiError, parseMesh } from './wire';
 import type { MeshData, MeshDelta } from './wire';
+import type { ShapeHandles } from './shape';
 
 export { ApiError, applyDelta, parseMesh } from './wire';
 export type { MeshData, MeshDelta } from './wire';
@@ -39,24 +40,26 @@ export interface Status {
   redo: number;
   dirty: boolean;
 }
-/** What the frame view draws of a view-only (spectral, cross-sections) model. */
+/** What the frame view draws of a model without editable parts (spectral, cross-sections,
+ * B-spline PDE). */
 export interface ModelView {
   /** Position curves of the conditions, closed, sampled around v. */
   curves: Vec3[][];
   /** The spine A0(u) of each patch. */
   spines: Vec3[][];
-  /** A spectral model's spine points to drag, at their u (as `pdesurf spine --count 9`). */
-  spineHandles?: { u: number[]; points: Vec3[] };
 }
 
 export interface ModelState extends Status {
   path: string;
   recovery: boolean;
-  /** False for models the studio shows but does not edit (spectral, cross-sections). */
-  editable: boolean;
-  /** The model as its file says (a vertex-frames Model when editable). */
+  /** Whether the model has editable parts (vertex frames; SurfaceMethod::hasEditableParts):
+   * false for spectral, cross-section and B-spline PDE models, edited by their handles. */
+  hasEditableParts: boolean;
+  /** The model as its file says (a vertex-frames Model when it has editable parts). */
   model: Model;
   view?: ModelView;
+  /** Models without editable parts: what their method offers to drag (SurfaceMethod::handles). */
+  handles?: ShapeHandles;
   /** Shape models: what to know before dragging a point ("" when a drag stays local). */
   dragAdvice?: string;
 }

@@ -14,8 +14,8 @@ import type { NumberRule } from './input';
 import { gizmoSubjects, pivotChoice, pivotPlaces } from './gizmo';
 import { axisAngleOf, scaledAlong, turnedBy } from './orientation';
 import { singlePivot } from './selection-transform';
-import { curveEntries, curveMoveEdit, dragEdit, operatorOf, shapeHandles } from './shape';
-import type { CurveEntry, CurveRef, Handle, ShapeEdit, SpineEdit } from './shape';
+import { curveMoveEdit, dragEdit, operatorOf } from './shape';
+import type { CurveEntry, CurveRef, Handle, ShapeEdit, ShapeHandles, SpineEdit } from './shape';
 import type { Studio } from './studio';
 
 /** Presses that move less than this many pixels are clicks. */
@@ -76,8 +76,10 @@ export function mountCurveEditor(studio: Studio): void {
 
   const shape = (): Json | null => {
     const s = store.state;
-    return s.viewOnly && s.shape ? (s.shape as Json) : null;
+    return !s.hasEditableParts && s.shape ? (s.shape as Json) : null;
   };
+  /** The server's handles of the model (null: a model with editable parts, or none yet). */
+  const served = (): ShapeHandles | null => (shape() ? store.state.handles : null);
 
   const sameRef = (a: Handle, b: Handle) =>
     a.kind === b.kind &&
@@ -87,14 +89,13 @@ export function mountCurveEditor(studio: Studio): void {
 
   /** The curve chosen in the panel's list (null: none, or no curves). */
   const chosen = (): CurveEntry | null => {
-    const model = shape();
     const value = $<HTMLSelectElement>('curve-select').value;
-    return (model && curveEntries(model).find((e) => String(e.ref) === value)) || null;
+    return served()?.curves.find((e) => String(e.ref) === value) ?? null;
   };
 
   function draw(): void {
-    const model = shape();
-    centres = model ? curveEntries(model).filter((e) => !e.vectors) : [];
+    const server = served();
+    centres = server ? server.curves.filter((e) => !e.vectors) : [];
     const choice = chosen();
     const cxyz = new Float32Array(3 * centres.length);
     const crgb = new Float32Array(3 * centres.length);
@@ -107,7 +108,7 @@ export function mountCurveEditor(studio: Studio): void {
     centreMarks.geometry.setAttribute('position', new THREE.BufferAttribute(cxyz, 3));
     centreMarks.geometry.setAttribute('color', new THREE.BufferAttribute(crgb, 3));
     centreMarks.visible = centres.length > 0;
-    handles = model ? shapeHandles(model, store.state.view) : [];
+    handles = server ? server.points : [];
     const tangents = handles.filter((h) => h.kind === 'tangent');
     let line = 0;
     tangentLine = handles.map((h) => (h.kind === 'tangent' ? line++ : -1));
@@ -205,7 +206,7 @@ export function mountCurveEditor(studio: Studio): void {
     if (h.kind === 'curve') return `${typeof h.curve === 'number' ? `curve ${h.curve}` : h.curve}, point ${h.point}`;
     if (h.kind === 'tangent') return `${typeof h.curve === 'number' ? `curve ${h.curve}` : h.curve}, ${h.mean ? 'mean tangent (a0)' : `tangent ${h.point}`}`;
     if (h.kind === 'control') return `P[${h.i}][${h.j}]`;
-    return `spine point ${h.index} (u = ${store.state.view?.spineHandles?.u[h.index]})`;
+    return `spine point ${h.index} (u = ${h.u})`;
   }
 
   /** Marks handle `h` (null: none); `choose`: its curve becomes the panel's (a click on it). */
@@ -283,8 +284,8 @@ export function mountCurveEditor(studio: Studio): void {
     const target = frameView.dragTarget(handle.p, ev.clientX, ev.clientY);
     if (!target) return;
     moveHandle(index, target);
-    const view = store.state.view;
-    pump.push(() => send({ ...dragEdit(handle, target, spine, view) }));
+    const server = served();
+    if (server) pump.push(() => send({ ...dragEdit(handle, target, spine, server) }));
   });
 
   async function endDrag(ev: PointerEvent): Promise<void> {
@@ -457,7 +458,7 @@ export function mountCurveEditor(studio: Studio): void {
     const select = $<HTMLSelectElement>('curve-select');
     const was = select.value;
     select.replaceChildren(
-      ...curveEntries(model).map((e) => {
+      ...(served()?.curves ?? []).map((e) => {
         const option = document.createElement('option');
         option.value = String(e.ref);
         option.textContent = e.label;
@@ -488,7 +489,7 @@ export function mountCurveEditor(studio: Studio): void {
   }
 
   store.subscribe(['model'], () => {
-    if (picked && !shapeHandles(shape() ?? {}, store.state.view).some((h) => sameRef(h, picked!))) picked = null;
+    if (picked && !(served()?.points ?? []).some((h) => sameRef(h, picked!))) picked = null;
     fillPanel();
     pick(picked);
     gizmoSubjects.changed?.();

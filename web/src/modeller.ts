@@ -65,7 +65,7 @@ export function mountModeller(
   const send = (make: () => Made) =>
     void studio.run(async () => {
       const model = store.state.model;
-      if (!model) throw new Error(`${store.state.viewOnly} models are view-only: no structure edits`);
+      if (!model) throw new Error(`${store.state.modelType} models have no editable parts: no structure edits`);
       const made = make();
       if ('problem' in made) throw new Error(made.problem);
       const status = await api.edit(made.edit);

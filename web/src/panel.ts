@@ -352,7 +352,7 @@ export function mountPanel(studio: Studio): void {
 
   store.subscribe(['model', 'selection'], (state) => {
     // Vertex, frame and force tools only mean something for a vertex-frame model.
-    for (const part of document.querySelectorAll<HTMLElement>('.frame-tools')) part.hidden = state.viewOnly !== '';
+    for (const part of document.querySelectorAll<HTMLElement>('.frame-tools')) part.hidden = !state.hasEditableParts;
     renderVertexInputs();
     const frames = selectedFrameList(state);
     $('frame-selection').textContent = frames.length ? frames.map((f) => `#${f}`).join(' ') : 'none';

@@ -12,7 +12,7 @@ export const BOUNDARIES_LIVE_FRAMES = 200;
 const BOUNDARY_MAX_SAMPLES = 33;
 
 export function overlayWanted(studio: Studio): boolean {
-  return $<HTMLInputElement>('overlay').checked && !studio.store.state.viewOnly;
+  return $<HTMLInputElement>('overlay').checked && studio.store.state.hasEditableParts;
 }
 
 export function mountSceneSync(studio: Studio): void {
@@ -26,9 +26,9 @@ export function mountSceneSync(studio: Studio): void {
       surfaceView.setBoundaries(null, state.selectedFrames);
     }
     if (!topics.has('model')) return;
-    $('frame-caption').textContent = !state.viewOnly
+    $('frame-caption').textContent = state.hasEditableParts
       ? 'Vertex frames'
-      : state.viewOnly === 'bspline-pde'
+      : state.modelType === 'bspline-pde'
         ? 'Control nets'
         : 'Curves and spine';
     surfaceView.setOverlay(overlayWanted(studio));

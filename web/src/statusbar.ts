@@ -18,7 +18,7 @@ export function mountStatusBar(studio: Studio): void {
       parts.push(`solve ${state.mesh.solveMs.toFixed(2)} ms`, `tessellate ${state.mesh.tessellateMs.toFixed(2)} ms`);
       parts.push(`${plural(state.mesh.triangleCount, 'triangle')}`);
     }
-    if (state.viewOnly) parts.push(`${state.viewOnly} model: drag its handles (Transform moves it whole)`);
+    if (!state.hasEditableParts) parts.push(`${state.modelType} model: drag its handles (Transform moves it whole)`);
     if (state.meshStale) parts.push('surface out of date (Create)');
     if (state.message) parts.push(state.message);
     $('status').textContent = parts.join(' · ');

@@ -2,19 +2,26 @@
 // signals): every write goes through Store.update, which names the topics it touched; the renderers subscribed to those topics run once, together, in the
 // next microtask. Nothing else writes the state or calls a renderer.
 import type { MeshData, Model, ModelView, Status, Vec3 } from './api';
+import type { ShapeHandles } from './shape';
 
 export interface State {
   /** The model file, relative to the studio's root. */
   path: string;
   /** The editable (vertex-frame) model: the page's copy, updated as edits are sent. */
   model: Model | null;
-  /** The type of a view-only model (spectral, cross-sections, bspline-pde), or ''. */
-  viewOnly: string;
-  /** A view-only model's curves and spines. */
+  /** Whether the model has editable parts (vertex frames: the frame tools edit them; the
+   * library's SurfaceMethod::hasEditableParts); without them the page drags the handles the
+   * server sends. */
+  hasEditableParts: boolean;
+  /** The model's type (its file's "type"), or '' before one is open. */
+  modelType: string;
+  /** The curves and spines of a model without editable parts. */
   view: ModelView | null;
   /** A spectral, cross-section or B-spline PDE model as its file says (curve-editor.ts edits
    * its curves, nets and spine through the server's shape edits). */
   shape: unknown;
+  /** What the server says such a model offers to drag (its method's handles), else null. */
+  handles: ShapeHandles | null;
   status: Status | null;
   /** An autosave differs from the file (offer to recover it). */
   recovery: boolean;
@@ -53,9 +60,11 @@ export function initialState(): State {
   return {
     path: '',
     model: null,
-    viewOnly: '',
+    hasEditableParts: true,
+    modelType: '',
     view: null,
     shape: null,
+    handles: null,
     status: null,
     recovery: false,
     selectedVertex: null,

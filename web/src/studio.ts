@@ -164,7 +164,7 @@ export class Studio {
   applyState(m: ModelState, fit: boolean): void {
     const store = this.store;
     const before = store.state.model;
-    const editable = m.editable;
+    const editable = m.hasEditableParts;
     const changedTopology =
       !editable ||
       !before ||
@@ -172,9 +172,11 @@ export class Studio {
       before.frames.length !== m.model.frames.length;
     store.update(['model', 'status', 'selection', 'forces'], (s) => {
       s.model = editable ? m.model : null;
-      s.viewOnly = editable ? '' : ((m.model as { type?: string }).type ?? 'this');
+      s.hasEditableParts = editable;
+      s.modelType = (m.model as { type?: string }).type ?? 'this';
       s.view = editable ? null : (m.view ?? { curves: [], spines: [] });
       s.shape = editable ? null : m.model;
+      s.handles = editable ? null : (m.handles ?? null);
       s.path = m.path;
       s.status = m;
       s.recovery = m.recovery;

@@ -1,10 +1,13 @@
 // The "bspline-pde" method (include/pdesurf/method.hpp): its description and its solved
-// surface (SolvedBSplinePde: a surface or a blend of pieces).
+// surface (SolvedBSplinePde: a surface or a blend of pieces), with its shape edits
+// (bspline_pde/edits.hpp).
 #include <span>
 
 #include "io/model_reader.hpp"
+#include "methods/bspline_pde/edits.hpp"
 #include "methods/builtin.hpp"
 #include "methods/reports.hpp"
+#include "methods/shape_edits/shape_edits.hpp"
 #include "pdesurf/bspline_pde_io.hpp"
 
 namespace pdesurf::detail {

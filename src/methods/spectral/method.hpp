@@ -1,17 +1,18 @@
-// The "spectral" and "cross-sections" methods (include/pdesurf/method.hpp): their
-// descriptions and their one solved surface (SolvedSpectral: a patch or a chain).
+// The "spectral" and "cross-sections" methods (include/pdesurf/method.hpp), private to
+// src/methods/: their one solved surface (SolvedSpectral: a patch or a chain) and the
+// description both instantiate (spectral/method.cpp, cross_sections/method.cpp), each with its
+// model's shape edits (spectral/edits.hpp, cross_sections/edits.hpp).
+#pragma once
+
 #include <algorithm>
 #include <numbers>
 
-#include "io/model_reader.hpp"
 #include "methods/builtin.hpp"
 #include "methods/reports.hpp"
+#include "methods/shape_edits/shape_edits.hpp"
 #include "pdesurf/analysis.hpp"
-#include "pdesurf/spectral_io.hpp"
 
 namespace pdesurf::detail {
-
-namespace {
 
 class SolvedSpectralSurface final : public SolvedSurfaceOf<SolvedSpectral> {
  public:
@@ -99,18 +100,5 @@ class SpectralMethod final
                         this->name(solved.model()), json);
   }
 };
-
-}  // namespace
-
-const SurfaceMethod& spectralMethod() {
-  static const SpectralMethod<SpectralModel> method("spectral", parseSpectralDocument);
-  return method;
-}
-
-const SurfaceMethod& crossSectionsMethod() {
-  static const SpectralMethod<CrossSectionModel> method("cross-sections",
-                                                        parseCrossSectionsDocument);
-  return method;
-}
 
 }  // namespace pdesurf::detail
