@@ -285,7 +285,7 @@ EditResult applyShapeEdit(const EditContext& context, const ModelEdit& modelEdit
   if (((t && t->fromGroupStart) || (m && m->falloff > 0.0)) && context.groupStart)
     base = context.groupStart;
   auto next = std::make_shared<const AnyModel>(shapeEdited(*base->model, *base->solved, edit));
-  auto solvedNext = std::make_shared<const SolvedModel>(solveModel(next, context.source));
+  auto solvedNext = std::make_shared<const SolvedModel>(solve(next, context.source));
   checkReach(*base->model, *base->solved, *next, *solvedNext);
   return {{std::move(next), std::move(solvedNext), nullptr}};
 }
@@ -307,7 +307,7 @@ std::string dragAdvice(const AnyModel& model) {
     return tessellate(solved, TessellateOptions{.resolution = kReachSamples}).positions;
   };
   try {
-    const SolvedModel base = solveModel(model, "probe");
+    const SolvedModel base = solve(model, "probe");
     const auto was = positions(base);
     Bounds box;
     for (std::size_t k = 0; k + 2 < was.size(); k += 3)
@@ -319,7 +319,7 @@ std::string dragAdvice(const AnyModel& model) {
       if (m->conditions[i].derivative != 0 || !points) continue;
       SpectralModel probe = *m;
       std::get<SampledCurve>(probe.conditions[i].curve).points[0] += d * Vec3(1, 2, 3).normalized();
-      const auto now = positions(solveModel(AnyModel(std::move(probe)), "probe"));
+      const auto now = positions(solve(AnyModel(std::move(probe)), "probe"));
       double moved = 0.0;
       for (std::size_t k = 0; k + 2 < was.size(); k += 3)
         moved = std::max(
