@@ -79,7 +79,7 @@ void BM_KroneckerSolve(benchmark::State& state) {
   const KnotType type = knotType(state);
   const ControlNet net = boundary(n);
   for (auto _ : state) {
-    pdesurf::BSplineSurface s = pdesurf::solveBSplinePde(net, {type, type});
+    pdesurf::BSplineSurface s = pdesurf::solve(net, {type, type});
     benchmark::DoNotOptimize(s.net().points.data());
   }
   state.counters["unknowns"] = static_cast<double>((n - 2) * (n - 2));
@@ -103,7 +103,7 @@ void BM_SparseLU(benchmark::State& state) {
   const ControlNet net = boundary(n);
   // The two solvers agree (checked once, outside the timing).
   {
-    const pdesurf::BSplineSurface s = pdesurf::solveBSplinePde(net, {type, type});
+    const pdesurf::BSplineSurface s = pdesurf::solve(net, {type, type});
     const std::vector<Vec3> x = sparseSolve(net, type);
     double worst = 0.0;
     const std::uint32_t m = n - 2;

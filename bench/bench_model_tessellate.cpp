@@ -10,8 +10,8 @@
 namespace {
 
 void BM_TessellateMug(benchmark::State& state) {
-  const pdesurf::SolvedModel solved =
-      pdesurf::loadAndSolve(std::string(PDESURF_SOURCE_DIR) + "/examples/mug.json");
+  const std::string path = std::string(PDESURF_SOURCE_DIR) + "/examples/mug.json";
+  const pdesurf::SolvedModel solved = pdesurf::solve(pdesurf::loadModel(path), path);
   const pdesurf::TessellateOptions options{static_cast<std::uint32_t>(state.range(0))};
   for (auto _ : state) benchmark::DoNotOptimize(pdesurf::tessellate(solved, options));
 }

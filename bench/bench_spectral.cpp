@@ -82,14 +82,14 @@ void run(benchmark::State& state, const std::vector<SampledCurve>& curves, std::
   options.remainder = fromPoints;
   pdesurf::SpectralGrid grid;
   try {
-    pdesurf::solveSpectral(pdesurf::SpectralOperator::ugail(n), conditions, options);
+    pdesurf::solve(pdesurf::SpectralOperator::ugail(n), conditions, options);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
     return;
   }
   for (auto _ : state) {
     const pdesurf::SpectralPatch patch =
-        pdesurf::solveSpectral(pdesurf::SpectralOperator::ugail(n), conditions, options);
+        pdesurf::solve(pdesurf::SpectralOperator::ugail(n), conditions, options);
     pdesurf::evaluateGrid(patch, us, vs, grid);
     benchmark::DoNotOptimize(grid.p.data());
   }
@@ -119,8 +119,7 @@ void kleinExample(benchmark::State& state, std::optional<double> a) {
   options.modes = kModes;
   pdesurf::SpectralGrid grid;
   for (auto _ : state) {
-    const pdesurf::SpectralPatch patch =
-        pdesurf::solveSpectral(model.op, model.conditions, options);
+    const pdesurf::SpectralPatch patch = pdesurf::solve(model.op, model.conditions, options);
     pdesurf::evaluateGrid(patch, us, vs, grid);
     benchmark::DoNotOptimize(grid.p.data());
   }

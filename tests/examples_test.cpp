@@ -114,11 +114,11 @@ TEST_P(SpectralExample, MeetsItsConditionsAndTessellatesCleanly) {
   std::optional<SpectralPatch> patch;
   std::optional<CrossSectionChain> chain;
   if (const auto* m = any.as<SpectralModel>()) {
-    patch = solveModel(*m, GetParam());
+    patch = solve(*m, GetParam()).patch;
     patches.push_back(&*patch);
   } else {
     const auto& cs = any.get<CrossSectionModel>();
-    chain = solveModel(cs, GetParam());
+    chain = solve(cs, GetParam()).chain;
     for (const ChainPatch& p : chain->patches) patches.push_back(&p.patch);
     if (cs.options.method == ChainMethod::ExactC2)
       for (const JointGap& g : measureJointGaps(*chain)) {
@@ -130,13 +130,13 @@ TEST_P(SpectralExample, MeetsItsConditionsAndTessellatesCleanly) {
   for (const SpectralPatch* p : patches)
     for (double e : conditionErrors(*p)) EXPECT_LT(e, kExampleConditionTolerance);
 
-  const SpectralTessellateOptions options{9, 16};
+  const TessellateOptions options{.resolution = 9, .aroundResolution = 16};
   const Mesh mesh = chain ? tessellate(*chain, options) : tessellate(*patch, options);
   ASSERT_GT(mesh.triangleCount(), 0u);
   const auto stats = testing::edgeStats(mesh);
   EXPECT_EQ(stats.inconsistentlyOrientedEdges, 0u);
   // Closed around v: the only open edges are the two end curves (fewer when one collapses).
-  EXPECT_LE(stats.boundaryEdges, 2u * options.vResolution);
+  EXPECT_LE(stats.boundaryEdges, 2u * options.aroundResolution);
   for (float x : mesh.positions) ASSERT_TRUE(std::isfinite(x));
   for (float x : mesh.normals) ASSERT_TRUE(std::isfinite(x));
 }
@@ -160,7 +160,7 @@ constexpr double kExampleBlendGapTolerance = 1e-9;
 TEST_P(BSplineExample, SolvesThePdeAndTessellatesCleanly) {
   const AnyModel any = loadModel(GetParam());
   const auto& model = any.get<BSplinePdeModel>();
-  const SolvedBSplinePde solved = solveBSplineModel(model, GetParam());
+  const SolvedBSplinePde solved = solve(model, GetParam());
   for (const BSplineSurface& piece : solved.pieces)
     EXPECT_LT(pdeResidual(piece), kExampleBSplineTolerance);
   if (solved.c1Gap) EXPECT_LT(*solved.c1Gap, kExampleBlendGapTolerance);

@@ -249,9 +249,9 @@ int run(const Args& args) {
       if (!o.slice.range) break;
       try {
         const SectionRebuild r = rebuildFromSections(mesh, o);
-        SpectralTessellateOptions t;
-        t.uResolution = std::max<std::uint32_t>(3, 256 / (k - 1) + 1);
-        t.vResolution = 256;
+        TessellateOptions t;
+        t.resolution = std::max<std::uint32_t>(3, 256 / (k - 1) + 1);
+        t.aroundResolution = 256;
         sectionSweep.push_back({{"sections", k},
                                 {"modes", o.modes},
                                 {"rms", accuracyRms(tessellate(r.chain, t), truth, distance)},

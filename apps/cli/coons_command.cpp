@@ -62,7 +62,7 @@ struct CoonsCommand {
     AnyModel any = loadModel(modelPath);
     const auto* model = any.as<VertexFrameModel>();
     if (!model) throw UsageError(fmt::format("{}: coons takes a vertex-frames model", modelPath));
-    const VertexFrameSurface surface = solve(*model, solveArgs.options(any));
+    const VertexFrameSurface surface = solve(*model, solveArgs.options(any).vertexFrames);
     std::vector<std::uint32_t> which = frames;
     if (which.empty())
       for (std::uint32_t k = 0; k < surface.patches.size(); ++k) which.push_back(k);
@@ -85,7 +85,7 @@ struct CoonsCommand {
         patches.push_back(CoonsPatch::bicubic(std::move(boundary), std::move(t)));
       }
     }
-    const Mesh mesh = tessellate(patches, resolution);
+    const Mesh mesh = tessellate(patches, {resolution});
     writeMesh(mesh, outPath);
     fmt::print("{}: {} {} Coons patch{} -> {} ({}, {})\n", modelDisplayName(model->name, modelPath),
                patches.size(), bilinear ? "bilinear" : "bicubic", patches.size() == 1 ? "" : "es",

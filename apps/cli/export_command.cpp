@@ -34,7 +34,7 @@ Converted convert(const std::string& path, const NurbsExportOptions& options) {
   AnyModel any = loadModel(path);
   Converted out;
   auto t0 = Clock::now();
-  const SolvedModel solved = solveModel(std::move(any), path);
+  const SolvedModel solved = solve(std::move(any), path);
   out.solveMs = msSince(t0);
   out.name = solved.displayName();
   t0 = Clock::now();

@@ -37,7 +37,7 @@ struct SampleCommand {
   int run() const {
     // Keys in the order written; doubles in their shortest round-trip form.
     nlohmann::ordered_json patches = nlohmann::ordered_json::array();
-    for (const PatchSamples& p : sample(loadSolved(modelPath, solveArgs), grid)) {
+    for (const PatchSamples& p : sample(loadSolved(modelPath, solveArgs), {grid})) {
       nlohmann::ordered_json points = nlohmann::ordered_json::array();
       for (const Vec3& q : p.points) points.push_back({q.x(), q.y(), q.z()});
       nlohmann::ordered_json patch = {{p.label, p.index}, {"grid", p.grid}};

@@ -23,7 +23,8 @@ void SolveArgs::add(CLI::App* cmd) {
 }
 
 SolveOptions SolveArgs::options(const AnyModel& model) const {
-  const SolveOptions options{solver == "local" ? Solver::Local : Solver::Global, seedFrame};
+  SolveOptions options;
+  options.vertexFrames = {solver == "local" ? Solver::Local : Solver::Global, seedFrame};
   try {
     checkSolveOptions(model, options);
   } catch (const InvalidArgument& e) {
@@ -42,7 +43,7 @@ void checkMeshExtension(const std::string& outPath) {
 
 SolvedModel solveWith(AnyModel any, const std::string& modelPath, const SolveArgs& args) {
   const SolveOptions options = args.options(any);
-  SolvedModel solved = solveModel(std::move(any), modelPath, options);
+  SolvedModel solved = solve(std::move(any), modelPath, options);
   for (const std::string& note : solved.notes())
     fmt::print(stderr, "{}: note: {}\n", solved.source(), note);
   return solved;

@@ -32,7 +32,7 @@ struct SpineCommand {
   }
 
   int run() const {
-    const SolvedModel solved = loadAndSolve(modelPath);
+    const SolvedModel solved = solve(loadModel(modelPath), modelPath);
     if (!solved.spectral())
       throw UsageError(fmt::format(
           "{}: only spectral and cross-sections models have a spine (this is a {} model)",

@@ -64,7 +64,7 @@ const Mesh* MeshSlots::sent(std::uint32_t resolution, std::uint64_t revision,
                             const SolveOptions& options) const {
   for (const Slot& s : slots_)
     if (s.resolution == resolution && s.sentId != 0 && s.sentRevision == revision &&
-        s.sentOptions.solver == options.solver && s.sentOptions.seedFrame == options.seedFrame)
+        s.sentOptions == options)
       return &s.sent;
   return nullptr;
 }

@@ -66,14 +66,14 @@ SolveOptions solveOptions(const httplib::Request& req, const Document& document)
   if (req.has_param("solver")) {
     const std::string s = req.get_param_value("solver");
     if (s == "local")
-      o.solver = Solver::Local;
+      o.vertexFrames.solver = Solver::Local;
     else if (s != "global")
       fail(400, fmt::format("solver: expected \"global\" or \"local\", found \"{}\"", s));
   }
   const ModelSession& session = document.session();
   if (req.has_param("seed") && session.hasEditableParts()) {
     const auto frames = static_cast<std::uint32_t>(session.frames()->frames.size());
-    o.seedFrame = parseUint(req.get_param_value("seed"), 0, frames - 1, "seed");
+    o.vertexFrames.seedFrame = parseUint(req.get_param_value("seed"), 0, frames - 1, "seed");
   }
   return o;
 }

@@ -13,7 +13,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const pdesurf::SolvedModel solved = pdesurf::loadAndSolve(argv[1]);
+    const pdesurf::SolvedModel solved = pdesurf::solve(pdesurf::loadModel(argv[1]), argv[1]);
     pdesurf::TessellateOptions options;
     if (argc == 4) options.resolution = static_cast<std::uint32_t>(std::stoul(argv[3]));
     const pdesurf::Mesh mesh = pdesurf::tessellate(solved, options);

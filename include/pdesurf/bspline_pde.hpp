@@ -132,7 +132,7 @@ struct BSplinePdeOptions {
 /// unknowns, solved as X = M⁻¹ Y N⁻ᵀ with banded LU of M and N, in O(nu nv) (Y has rank ≤ 6).
 /// Throws InvalidArgument as BSplineSurface does, the inner points exempt from the
 /// finiteness check.
-BSplineSurface solveBSplinePde(const ControlNet& net, const BSplinePdeOptions& options = {});
+BSplineSurface solve(const ControlNet& net, const BSplinePdeOptions& options = {});
 
 /// The same solve with M and N factored once, for many nets of one size (an editor). The
 /// const members keep no scratch state: one solver may serve several threads.
@@ -264,14 +264,11 @@ C1Blend blendClosedCurves(const BSplineCurve& start, const BSplineCurve& end, st
 // ---------------------------------------------------------------------------------------
 // Tessellation.
 
-struct BSplineTessellateOptions {
-  /// Grid segments per knot span in each direction (≥ 1).
-  std::uint32_t segmentsPerSpan = 6;
-};
-
-/// A grid mesh over [0,1]²: (uSpans·s + 1) × (vSpans·s + 1) vertices, row by row in u, with
-/// analytic unit normals x_u × x_v (at a degenerate point: taken just inside the domain, else
-/// the mean of the adjacent faces). patchIds[t] = the span (a, b) of triangle t as a·vSpans + b.
-Mesh tessellate(const BSplineSurface& surface, const BSplineTessellateOptions& options = {});
+/// A grid mesh over [0,1]²: (uSpans·s + 1) × (vSpans·s + 1) vertices for s segments per knot
+/// span, the fewest that give at least options.resolution − 1 segments along the side with
+/// more spans; row by row in u, with analytic unit normals x_u × x_v (at a degenerate point:
+/// taken just inside the domain, else the mean of the adjacent faces). patchIds[t] = the
+/// span (a, b) of triangle t as a·vSpans + b. Throws InvalidArgument as checkTessellateOptions.
+Mesh tessellate(const BSplineSurface& surface, const TessellateOptions& options = {});
 
 }  // namespace pdesurf

@@ -71,11 +71,11 @@ struct SolvedBSplinePde {
 
 /// Solves a parsed model. The engine's refusals (corners that do not meet, too few samples,
 /// a curve that is not closed) become ModelError naming `source` and the model's part.
-SolvedBSplinePde solveBSplineModel(const BSplinePdeModel& model, const std::string& source);
+SolvedBSplinePde solve(const BSplinePdeModel& model, const std::string& source);
 
-/// The mesh for `samples` points per piece side (at least one segment per knot span): one
-/// grid over all pieces, seam points shared (watertight), the closed blend closed in V.
-/// patchIds hold the piece of each triangle.
-Mesh tessellate(const SolvedBSplinePde& solved, std::uint32_t samples);
+/// The mesh for options.resolution points per piece side (at least one segment per knot
+/// span): one grid over all pieces, seam points shared (watertight), the closed blend closed
+/// in V. patchIds hold the piece of each triangle.
+Mesh tessellate(const SolvedBSplinePde& solved, const TessellateOptions& options = {});
 
 }  // namespace pdesurf

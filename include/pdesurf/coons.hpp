@@ -66,8 +66,8 @@ CoonsTangents patchTangents(const VertexFramePatch& patch);
 /// rounding error ε/h balance near 1e-5 for surfaces of unit size.
 constexpr double kCoonsTangentStep = 1e-5;
 
-/// Each patch sampled on an n × n grid with normals from the derivatives; patches are not
-/// welded to each other (a baseline, not a model).
-Mesh tessellate(const std::vector<CoonsPatch>& patches, std::uint32_t n);
+/// Each patch sampled on an options.resolution × options.resolution grid with normals from
+/// the derivatives; patches are not welded to each other (a baseline, not a model).
+Mesh tessellate(const std::vector<CoonsPatch>& patches, const TessellateOptions& options = {});
 
 }  // namespace pdesurf

@@ -146,13 +146,14 @@ class SurfaceMethod {
   /// The "name" the model gives (empty when none).
   virtual const std::string& name(const AnyModel& model) const = 0;
 
-  /// Solves the model; refusals are ModelError naming `source`. `options` and `topology`
-  /// (a FrameTopology of this model's frames, or null) are the vertex-frame solver's: the
-  /// other methods take no options.
+  /// Solves the model; refusals are ModelError naming `source`. The method reads its own
+  /// member of `options` (SolveOptions: vertexFrames) and ignores the others; `topology` (a
+  /// FrameTopology of this model's frames, or null) is the vertex-frame solver's.
   virtual std::shared_ptr<const SolvedSurface> solve(
       const AnyModel& model, const std::string& source, const SolveOptions& options,
       const std::shared_ptr<const FrameTopology>& topology) const = 0;
-  /// Throws InvalidArgument when `options` do not fit the model (the default: they fit).
+  /// Throws InvalidArgument when the method's member of `options` does not fit the model
+  /// (the default: it fits).
   virtual void checkSolveOptions(const AnyModel& model, const SolveOptions& options) const;
 
   /// The model moved, turned or scaled whole (transform.hpp: what re-solving gives).

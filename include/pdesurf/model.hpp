@@ -100,6 +100,22 @@ struct ModelOverlay {
   std::vector<std::vector<Vec3>> curves, spines;
 };
 
+/// How `solve` solves a model of any method: one member for each method that takes options,
+/// read by that method alone; a model of another method ignores it (a spectral model has no
+/// seed frame), so solve(AnyModel) never reads an option meant for another method, and
+/// checkSolveOptions checks only the member of the model's own method.
+struct SolveOptions {
+  VertexFrameSolveOptions vertexFrames;  ///< vertex-frame models: the solver, the seed frame
+
+  bool operator==(const SolveOptions&) const = default;
+};
+
+/// How `sample` samples every patch of a model.
+struct SampleOptions {
+  /// Points per patch side (≥ 2): each patch a grid × grid lattice over its domain.
+  std::uint32_t grid = 17;
+};
+
 /// What `build` and `info` report of a solved model.
 struct ModelReport {
   std::string summary;  ///< "3 frames, 2 strips" / "spectral, order 12, …" / "bspline-pde, …"
@@ -127,8 +143,9 @@ class SolvedSurface {
   /// own resolution × resolution grid over its domain (patches not welded), normals
   /// S_u × S_v.
   virtual Mesh tessellate(const TessellateOptions& options) const;
-  /// Every patch on a grid × grid lattice over its domain (the default: through evaluate).
-  virtual std::vector<PatchSamples> sample(std::uint32_t grid) const;
+  /// Every patch on an options.grid × options.grid lattice over its domain (the default:
+  /// through evaluate).
+  virtual std::vector<PatchSamples> sample(const SampleOptions& options) const;
   /// The patches as NURBS faces (docs/nurbs-export.md).
   virtual NurbsModel toNurbs(const NurbsExportOptions& options) const = 0;
   /// The largest distance between two patches where they should meet (absolute), 0 for a
@@ -170,10 +187,6 @@ const T& SolvedSurface::get() const {
   return dynamic_cast<const SolvedSurfaceOf<T>&>(*this).value();
 }
 
-/// A spectral or cross-section model, solved; nothing for the other types (the examples'
-/// tests).
-std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source);
-
 /// A parsed model with its solved surface, the name it goes by in messages (`source`, a
 /// file path) and the options it was solved with.
 class SolvedModel {
@@ -204,17 +217,20 @@ class SolvedModel {
   SolveOptions options_;
 };
 
-/// Solves a model of any method (its description's solve). Vertex frames use `options` (and
-/// `topology` when given: one built by buildTopology for this model's frames, shared by every solve
-/// of a session); the other types' solver refusals become ModelError naming `source`.
-SolvedModel solveModel(std::shared_ptr<const AnyModel> model, const std::string& source,
-                       const SolveOptions& options = {},
-                       std::shared_ptr<const FrameTopology> topology = nullptr);
-SolvedModel solveModel(AnyModel model, const std::string& source, const SolveOptions& options = {});
+/// Solves a model of any method (its description's solve); the overloads on one method's
+/// own model type (solve(SpectralModel), …) return that method's solved value instead. The
+/// method reads its member of `options` (SolveOptions) and, for vertex frames, `topology`
+/// when given (one built by buildTopology for this model's frames, shared by every solve of
+/// a session); solver refusals become ModelError naming `source`. A model file:
+/// `solve(loadModel(path), path)`.
+SolvedModel solve(std::shared_ptr<const AnyModel> model, const std::string& source,
+                  const SolveOptions& options = {},
+                  std::shared_ptr<const FrameTopology> topology = nullptr);
+SolvedModel solve(AnyModel model, const std::string& source, const SolveOptions& options = {});
 
-/// Throws InvalidArgument when `options` do not fit `model` (vertex frames: a seed frame
-/// the model does not have), with what is wrong: "out of range, the model has 3 frames
-/// (indices 0 to 2)".
+/// Throws InvalidArgument when the member of `options` for the model's method does not fit
+/// `model` (vertex frames: a seed frame the model does not have), with what is wrong: "out of
+/// range, the model has 3 frames (indices 0 to 2)".
 void checkSolveOptions(const AnyModel& model, const SolveOptions& options);
 
 /// The mesh for options.resolution samples per patch side, for every type (the resolution of
@@ -241,7 +257,7 @@ class ModelTessellator {
 
 /// Every patch sampled: vertex frames and B-spline pieces on the unit square, spectral
 /// patches over their u range and v ∈ [0, 2π].
-std::vector<PatchSamples> sample(const SolvedModel& solved, std::uint32_t grid);
+std::vector<PatchSamples> sample(const SolvedModel& solved, const SampleOptions& options = {});
 
 ModelReport report(const SolvedModel& solved);
 /// `info`: counts, quality figures, bounding box and storage, as text or as JSON.

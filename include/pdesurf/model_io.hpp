@@ -16,8 +16,6 @@ namespace pdesurf {
 AnyModel parseModel(std::string_view text, const std::string& source);
 /// Reads and parses a model file of any type (errors name the path).
 AnyModel loadModel(const std::string& path);
-/// Reads, parses and solves a model file (errors name the path).
-SolvedModel loadAndSolve(const std::string& path, const SolveOptions& options = {});
 
 /// The model as JSON text that parseModel reads back to the same model (numbers written
 /// shortest round-trip).

@@ -54,7 +54,7 @@ SectionRebuild rebuildFromSections(const Mesh& mesh, const SectionRebuildOptions
 /// against its mesh (`pdesurf rebuild --as cross-sections`, the Python package's rebuild):
 /// about 256 rows over the chain and 256 columns, so that the tessellation's own chord error
 /// (below 1e-4 of a section's radius for 8 modes) stays far below the distances measured.
-SpectralTessellateOptions chainMeasureOptions(std::size_t patches);
+TessellateOptions chainMeasureOptions(std::size_t patches);
 
 /// The surface of `mesh` that the sections rebuild: the triangles between the first and the
 /// last plane (clipped to them) that are connected, within that slab, to the kept loops.

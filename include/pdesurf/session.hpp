@@ -369,7 +369,7 @@ class ModelSession {
   /// the same (the end of a drag).
   void endGroup() { history_.endGroup(); }
 
-  /// The current model solved (vertex frames with `options`; the other types ignore them).
+  /// The current model solved with `options` (each method reads its own member of them).
   const SolvedModel& solved(const SolveOptions& options = {});
 
  private:

@@ -212,9 +212,8 @@ class SpectralPatch {
 /// mode's condition system by QR (one factorisation per mode) and builds the remainder.
 /// Throws InvalidArgument naming what is wrong (operator, condition count, duplicate
 /// u, too few points for M, open or degenerate curves, singular conditions).
-SpectralPatch solveSpectral(const SpectralOperator& op,
-                            std::span<const SpectralCondition> conditions,
-                            const SpectralOptions& options = {});
+SpectralPatch solve(const SpectralOperator& op, std::span<const SpectralCondition> conditions,
+                    const SpectralOptions& options = {});
 
 /// The u of each position curve under a placement (curves as Fourier fits or points).
 std::vector<double> placeCurves(std::span<const CurveInput> curves, UPlacement placement,
@@ -332,11 +331,11 @@ struct CrossSectionChain {
 /// The name of a method as model files write it: "global", "c2", "shared-curves".
 const char* chainMethodName(ChainMethod method);
 
-/// Builds the chain from K ordered closed curves (global: K ≥ 2; method 2: K ≥ 4; method 1:
-/// K ≥ 6). Throws InvalidArgument naming the curve for bad curves, coincident
+/// Solves the chain of patches through K ordered closed curves (global: K ≥ 2; method 2:
+/// K ≥ 4; method 1: K ≥ 6). Throws InvalidArgument naming the curve for bad curves, coincident
 /// spacing (two consecutive curves at the same u) or a singular system.
-CrossSectionChain buildCrossSectionChain(std::span<const CurveInput> curves,
-                                         const CrossSectionOptions& options = {});
+CrossSectionChain solve(std::span<const CurveInput> curves,
+                        const CrossSectionOptions& options = {});
 
 /// Gaps at one joint: max over v of |ΔX|, |Δ∂uX|, |Δ∂²uX| between the two patches'
 /// local parameters, absolute and relative to the chain's extent.
@@ -350,17 +349,13 @@ std::vector<JointGap> measureJointGaps(const CrossSectionChain& chain, std::uint
 // ---------------------------------------------------------------------------------------
 // Tessellation.
 
-struct SpectralTessellateOptions {
-  std::uint32_t uResolution = 33;  ///< rows per patch (≥ 2), ends included
-  std::uint32_t vResolution = 64;  ///< distinct columns around v (≥ 3); v = 2π is column 0
-};
-
-/// A watertight, consistently oriented mesh: the v seam shares its vertices, collapsed
-/// rows are one vertex, normals come from the analytic derivatives and face away from the
-/// spine.
-Mesh tessellate(const SpectralPatch& patch, const SpectralTessellateOptions& options = {});
+/// A watertight, consistently oriented mesh of options.resolution rows along u (ends
+/// included) and options.aroundResolution distinct columns around v (v = 2π is column 0;
+/// TessellateOptions says what 0 means): the v seam shares its vertices, collapsed rows are
+/// one vertex, normals come from the analytic derivatives and face away from the spine.
+Mesh tessellate(const SpectralPatch& patch, const TessellateOptions& options = {});
 /// The same for a chain: consecutive patches share the joint curve's vertices (normals
 /// averaged), patchIds give the patch index.
-Mesh tessellate(const CrossSectionChain& chain, const SpectralTessellateOptions& options = {});
+Mesh tessellate(const CrossSectionChain& chain, const TessellateOptions& options = {});
 
 }  // namespace pdesurf

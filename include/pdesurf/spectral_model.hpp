@@ -33,11 +33,6 @@ struct CrossSectionModel {
   std::vector<CurveInput> curves;
 };
 
-/// Solves a parsed model. The solver's own refusals (singular conditions, collapsed
-/// curves) become ModelError naming `source`.
-SpectralPatch solveModel(const SpectralModel& model, const std::string& source);
-CrossSectionChain solveModel(const CrossSectionModel& model, const std::string& source);
-
 /// A spectral or cross-section model, solved: one patch or a chain of patches.
 struct SolvedSpectral {
   std::string type;  ///< "spectral" or "cross-sections"
@@ -54,13 +49,14 @@ struct SolvedSpectral {
                  : std::pair{patch->uStart(), patch->uEnd()};
   }
 };
-SolvedSpectral solveSpectralModel(const SpectralModel& model, const std::string& source);
-SolvedSpectral solveSpectralModel(const CrossSectionModel& model, const std::string& source);
 
-/// The tessellation for `samples` points per patch side, the resolution of the CLI and the
-/// studio: `samples` rows along u and 4(samples − 1) columns around the closed direction v
-/// (a turn is about 2π times longer than a patch is long), at least 8.
-SpectralTessellateOptions spectralMeshOptions(std::uint32_t samples);
-Mesh tessellate(const SolvedSpectral& solved, std::uint32_t samples);
+/// Solves a parsed model: one patch (`patch`) or a chain (`chain`). The solver's own
+/// refusals (singular conditions, collapsed curves) become ModelError naming `source`.
+SolvedSpectral solve(const SpectralModel& model, const std::string& source);
+SolvedSpectral solve(const CrossSectionModel& model, const std::string& source);
+
+/// The patch's or the chain's mesh (tessellate(SpectralPatch) and
+/// tessellate(CrossSectionChain), spectral.hpp).
+Mesh tessellate(const SolvedSpectral& solved, const TessellateOptions& options = {});
 
 }  // namespace pdesurf

@@ -143,9 +143,13 @@ enum class Solver {
   Local    ///< the seed's patch generation rule: breadth-first, first patch sets its strips
 };
 
-struct SolveOptions {
+/// How a vertex-frame model is solved (the vertex-frame member of the generic SolveOptions,
+/// model.hpp).
+struct VertexFrameSolveOptions {
   Solver solver = Solver::Global;
   std::uint32_t seedFrame = 0;  ///< Local: where the breadth-first generation starts
+
+  bool operator==(const VertexFrameSolveOptions&) const = default;
 };
 
 /// The particular solution of one force on one patch: S_p = k ⊙ s(u) s(v) inside the
@@ -186,13 +190,14 @@ std::array<Vec3, 10> patchCoefficients(const std::array<Vec3, 8>& p, const Vec3&
 std::array<Vec3, 2> singlePatchCubics(const std::array<Vec3, 8>& p, const Vec3& a1, const Vec3& a2);
 
 /// Solves every patch of a valid model.
-VertexFrameSurface solve(const VertexFrameModel& model, const SolveOptions& options = {});
+VertexFrameSurface solve(const VertexFrameModel& model,
+                         const VertexFrameSolveOptions& options = {});
 
 /// Re-solves with a topology already built for the same frame structure (the studio's
 /// path when only positions, a1, a2 or forces change).
 VertexFrameSurface solve(const VertexFrameModel& model,
                          std::shared_ptr<const FrameTopology> topology,
-                         const SolveOptions& options = {});
+                         const VertexFrameSolveOptions& options = {});
 
 // ---------------------------------------------------------------------------------------
 // Tessellation.

@@ -133,7 +133,8 @@ SolveOptions solveOptions(const AnyModel& model, const std::string& solver,
                           std::uint32_t seedFrame) {
   if (solver != "global" && solver != "local")
     badArgument("solver", "'" + solver + "' is neither 'global' nor 'local'");
-  const SolveOptions options{solver == "local" ? Solver::Local : Solver::Global, seedFrame};
+  SolveOptions options;
+  options.vertexFrames = {solver == "local" ? Solver::Local : Solver::Global, seedFrame};
   try {
     checkSolveOptions(model, options);
   } catch (const InvalidArgument& e) {
@@ -146,7 +147,7 @@ std::shared_ptr<SolvedModel> solve(const Model& model, const std::string& solver
                                    std::uint32_t seedFrame) {
   const SolveOptions options = solveOptions(*model.model, solver, seedFrame);
   py::gil_scoped_release release;
-  return std::make_shared<SolvedModel>(solveModel(model.model, model.source, options));
+  return std::make_shared<SolvedModel>(pdesurf::solve(model.model, model.source, options));
 }
 
 // The patches of a solved model, their domains and evaluation: the library's solved-model
@@ -198,7 +199,7 @@ py::array sampleGrid(const SolvedModel& solved, std::uint32_t grid) {
   std::vector<PatchSamples> samples;
   {
     py::gil_scoped_release release;
-    samples = sample(solved, grid);
+    samples = sample(solved, {grid});
   }
   const auto n = static_cast<py::ssize_t>(grid);
   py::array_t<double> out({static_cast<py::ssize_t>(samples.size()), n, n, py::ssize_t{3}});

@@ -135,8 +135,9 @@ CoonsTangents patchTangents(const VertexFramePatch& source) {
   return {cross(true, 0), cross(true, 1), cross(false, 0), cross(false, 1)};
 }
 
-Mesh tessellate(const std::vector<CoonsPatch>& patches, std::uint32_t n) {
-  if (n < 2) throw InvalidArgument("Coons tessellation needs at least 2 samples per side");
+Mesh tessellate(const std::vector<CoonsPatch>& patches, const TessellateOptions& options) {
+  checkTessellateOptions(options);
+  const std::uint32_t n = options.resolution;
   Mesh mesh;
   for (std::size_t k = 0; k < patches.size(); ++k) {
     const auto base = static_cast<std::uint32_t>(mesh.vertexCount());

@@ -25,6 +25,13 @@ std::uint32_t findSpan(std::span<const double> knots, std::uint32_t n, double t)
 /// (Piegl & Tiller, The NURBS Book, A2.3, for degree 3).
 CubicBasis cubicBasis(std::span<const double> knots, std::uint32_t n, double t);
 
+/// The segments per knot span for a tessellation of `resolution` (≥ 2) samples per side: the
+/// fewest that give at least resolution − 1 along the side with more spans.
+std::uint32_t segmentsPerSpan(const BSplineSurface& surface, std::uint32_t resolution);
+
+/// The grid mesh of tessellate(BSplineSurface) for `segments` (≥ 1) segments a knot span.
+Mesh tessellateSpans(const BSplineSurface& surface, std::uint32_t segments);
+
 /// Throws InvalidArgument unless nu, nv ≥ 3, the point count is (nu+1)(nv+1) and every
 /// point (every given point when `innerExempt`) is finite. `where` starts each message.
 void validateNet(const ControlNet& net, bool innerExempt, std::string_view where);

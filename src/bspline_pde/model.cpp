@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "bspline_pde/internal.hpp"
 #include "pdesurf/bspline_pde_model.hpp"
 #include "pdesurf/error.hpp"
 
@@ -63,15 +64,15 @@ BSplineBoundary boundaryOf(const BoundaryInput& in, const BSplinePdeOptions& kno
   return b;
 }
 
-SolvedBSplinePde solveBSplineModel(const BSplinePdeModel& m, const std::string& source) {
+SolvedBSplinePde solve(const BSplinePdeModel& m, const std::string& source) {
   SolvedBSplinePde s;
   try {
     switch (m.form) {
       case BSplinePdeModel::Form::Net:
-        s.pieces.push_back(solveBSplinePde(m.net, m.knots));
+        s.pieces.push_back(solve(m.net, m.knots));
         break;
       case BSplinePdeModel::Form::Boundary:
-        s.pieces.push_back(solveBSplinePde(boundaryNet(boundaryOf(m.boundary, m.knots)), m.knots));
+        s.pieces.push_back(solve(boundaryNet(boundaryOf(m.boundary, m.knots)), m.knots));
         break;
       case BSplinePdeModel::Form::Blend:
       case BSplinePdeModel::Form::ClosedBlend: {
@@ -95,11 +96,12 @@ SolvedBSplinePde solveBSplineModel(const BSplinePdeModel& m, const std::string& 
   return s;
 }
 
-Mesh tessellate(const SolvedBSplinePde& solved, std::uint32_t samples) {
+Mesh tessellate(const SolvedBSplinePde& solved, const TessellateOptions& options) {
+  checkTessellateOptions(options);
   const BSplineSurface& first = solved.pieces.front();
-  const std::uint32_t spans = std::max(first.uSpans(), first.vSpans());
-  const std::uint32_t segments = std::max(1u, (std::max(samples, 2u) - 1 + spans - 1) / spans);
-  if (solved.pieces.size() == 1 && !solved.closedV) return tessellate(first, {segments});
+  const std::uint32_t segments = bspline::segmentsPerSpan(first, options.resolution);
+  if (solved.pieces.size() == 1 && !solved.closedV)
+    return bspline::tessellateSpans(first, segments);
 
   // One grid over the pieces' unit squares; a seam point is the first piece's.
   std::uint32_t pu = 0, pv = 0;
@@ -114,7 +116,7 @@ Mesh tessellate(const SolvedBSplinePde& solved, std::uint32_t samples) {
   mesh.normals.assign(3 * std::size_t{rows} * cols, 0.0f);
   std::vector<std::uint8_t> written(std::size_t{rows} * cols, 0);
   for (std::size_t k = 0; k < solved.pieces.size(); ++k) {
-    const Mesh piece = tessellate(solved.pieces[k], {segments});
+    const Mesh piece = bspline::tessellateSpans(solved.pieces[k], segments);
     const auto [p, q] = solved.origin[k];
     for (std::uint32_t a = 0; a <= cu; ++a)
       for (std::uint32_t b = 0; b <= cv; ++b) {

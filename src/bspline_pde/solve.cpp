@@ -131,7 +131,7 @@ std::uint32_t BSplinePdeSolver::nv() const { return impl_->nv; }
 
 void BSplinePdeSolver::solveInPlace(ControlNet& net) const {
   const Impl& s = *impl_;
-  bspline::validateNet(net, true, "solveBSplinePde");
+  bspline::validateNet(net, true, "solve");
   if (net.nu != s.nu || net.nv != s.nv)
     throw InvalidArgument("BSplinePdeSolver: factored for nu = " + std::to_string(s.nu) +
                           ", nv = " + std::to_string(s.nv) + ", given a net with nu = " +
@@ -174,8 +174,8 @@ BSplineSurface BSplinePdeSolver::solve(const ControlNet& net) const {
   return BSplineSurface(std::move(out), impl_->options.uKnots, impl_->options.vKnots);
 }
 
-BSplineSurface solveBSplinePde(const ControlNet& net, const BSplinePdeOptions& options) {
-  bspline::validateNet(net, true, "solveBSplinePde");
+BSplineSurface solve(const ControlNet& net, const BSplinePdeOptions& options) {
+  bspline::validateNet(net, true, "solve");
   return BSplinePdeSolver(net.nu, net.nv, options).solve(net);
 }
 

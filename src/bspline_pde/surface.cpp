@@ -81,11 +81,16 @@ void BSplineSurface::evaluateGrid(std::span<const double> us, std::span<const do
     for (std::size_t b = 0; b < vs.size(); ++b) out[a * vs.size() + b] = evaluate(bu[a], bv[b]);
 }
 
-Mesh tessellate(const BSplineSurface& surface, const BSplineTessellateOptions& options) {
-  if (options.segmentsPerSpan < 1)
-    throw InvalidArgument("tessellate: segmentsPerSpan must be at least 1");
+namespace bspline {
+
+std::uint32_t segmentsPerSpan(const BSplineSurface& surface, std::uint32_t resolution) {
+  const std::uint32_t spans = std::max(surface.uSpans(), surface.vSpans());
+  return std::max(1u, (resolution - 1 + spans - 1) / spans);
+}
+
+Mesh tessellateSpans(const BSplineSurface& surface, std::uint32_t segments) {
   const std::uint32_t su = surface.uSpans(), sv = surface.vSpans();
-  const std::uint32_t cu = su * options.segmentsPerSpan, cv = sv * options.segmentsPerSpan;
+  const std::uint32_t cu = su * segments, cv = sv * segments;
   if ((static_cast<std::uint64_t>(cu) + 1) * (cv + 1) > 0xffffffffull)
     throw InvalidArgument("tessellate: the grid has more vertices than 32-bit indices hold");
   std::vector<double> us(cu + 1), vs(cv + 1);
@@ -132,7 +137,7 @@ Mesh tessellate(const BSplineSurface& surface, const BSplineTessellateOptions& o
     for (std::uint32_t b = 0; b < cv; ++b) {
       const std::uint32_t v00 = a * (cv + 1) + b, v10 = v00 + cv + 1;
       const std::uint32_t v01 = v00 + 1, v11 = v10 + 1;
-      const std::uint32_t span = (a / options.segmentsPerSpan) * sv + (b / options.segmentsPerSpan);
+      const std::uint32_t span = (a / segments) * sv + (b / segments);
       // Counter-clockwise in (u, v): the side x_u × x_v points to.
       mesh.indices.insert(mesh.indices.end(), {v00, v10, v11, v00, v11, v01});
       mesh.patchIds.insert(mesh.patchIds.end(), {span, span});
@@ -153,6 +158,13 @@ Mesh tessellate(const BSplineSurface& surface, const BSplineTessellateOptions& o
     }
   }
   return mesh;
+}
+
+}  // namespace bspline
+
+Mesh tessellate(const BSplineSurface& surface, const TessellateOptions& options) {
+  checkTessellateOptions(options);
+  return bspline::tessellateSpans(surface, bspline::segmentsPerSpan(surface, options.resolution));
 }
 
 }  // namespace pdesurf

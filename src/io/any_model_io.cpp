@@ -36,10 +36,6 @@ AnyModel loadModel(const std::string& path) {
   return parseModel(detail::readModelFile(path), path);
 }
 
-SolvedModel loadAndSolve(const std::string& path, const SolveOptions& options) {
-  return solveModel(loadModel(path), path, options);
-}
-
 std::string serializeModel(const AnyModel& model) { return model.method().serialize(model); }
 
 }  // namespace pdesurf

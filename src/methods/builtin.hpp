@@ -37,8 +37,8 @@ class OptionlessMethod : public MethodOf<Model> {
  public:
   using Parse = Model (*)(const nlohmann::json&, const std::string&);
   using Solve = Solved (*)(const Model&, const std::string&);
-  OptionlessMethod(const char* type, Parse parseFile, Solve solveModel)
-      : type_(type), parse_(parseFile), solve_(solveModel) {}
+  OptionlessMethod(const char* type, Parse parseFile, Solve solveFile)
+      : type_(type), parse_(parseFile), solve_(solveFile) {}
 
   const char* typeName() const override { return type_; }
   AnyModel parse(const nlohmann::json& document, const std::string& source) const override {

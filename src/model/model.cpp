@@ -22,13 +22,6 @@ const char* modelTypeName(const AnyModel& model) { return model.method().typeNam
 
 const std::string& modelNameOf(const AnyModel& model) { return model.method().name(model); }
 
-std::optional<SolvedSpectral> solveIfSpectral(const AnyModel& model, const std::string& source) {
-  // A type branch: the examples' tests compare the spectral engines alone.
-  if (const auto* m = model.as<SpectralModel>()) return solveSpectralModel(*m, source);
-  if (const auto* m = model.as<CrossSectionModel>()) return solveSpectralModel(*m, source);
-  return std::nullopt;
-}
-
 SolvedModel::SolvedModel(std::shared_ptr<const AnyModel> model,
                          std::shared_ptr<const SolvedSurface> surface, std::string source,
                          SolveOptions options)
@@ -52,14 +45,14 @@ const std::vector<std::string>& SolvedSurface::notes() const {
   return kNone;
 }
 
-SolvedModel solveModel(std::shared_ptr<const AnyModel> model, const std::string& source,
-                       const SolveOptions& options, std::shared_ptr<const FrameTopology> topology) {
+SolvedModel solve(std::shared_ptr<const AnyModel> model, const std::string& source,
+                  const SolveOptions& options, std::shared_ptr<const FrameTopology> topology) {
   auto surface = model->method().solve(*model, source, options, topology);
   return SolvedModel(std::move(model), std::move(surface), source, options);
 }
 
-SolvedModel solveModel(AnyModel model, const std::string& source, const SolveOptions& options) {
-  return solveModel(std::make_shared<const AnyModel>(std::move(model)), source, options);
+SolvedModel solve(AnyModel model, const std::string& source, const SolveOptions& options) {
+  return solve(std::make_shared<const AnyModel>(std::move(model)), source, options);
 }
 
 void checkSolveOptions(const AnyModel& model, const SolveOptions& options) {
@@ -112,8 +105,8 @@ const Mesh& ModelTessellator::tessellate(const SolvedModel& solved,
 }
 
 Mesh SolvedSurface::tessellate(const TessellateOptions& options) const {
+  checkTessellateOptions(options);
   const std::uint32_t n = options.resolution;
-  if (n < 2) throw InvalidArgument("tessellate: resolution must be at least 2");
   Mesh mesh;
   for (std::size_t k = 0; k < patchCount(); ++k) {
     const PatchDomain d = domain(k);
@@ -139,7 +132,8 @@ Mesh SolvedSurface::tessellate(const TessellateOptions& options) const {
   return mesh;
 }
 
-std::vector<PatchSamples> SolvedSurface::sample(std::uint32_t n) const {
+std::vector<PatchSamples> SolvedSurface::sample(const SampleOptions& options) const {
+  const std::uint32_t n = options.grid;
   std::vector<PatchSamples> out;
   for (std::size_t k = 0; k < patchCount(); ++k) {
     const PatchDomain d = domain(k);
@@ -155,8 +149,8 @@ std::vector<PatchSamples> SolvedSurface::sample(std::uint32_t n) const {
   return out;
 }
 
-std::vector<PatchSamples> sample(const SolvedModel& solved, std::uint32_t n) {
-  return solved.surface().sample(n);
+std::vector<PatchSamples> sample(const SolvedModel& solved, const SampleOptions& options) {
+  return solved.surface().sample(options);
 }
 
 double largestC0Gap(const SolvedModel& solved) { return solved.surface().largestC0Gap(); }

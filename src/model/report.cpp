@@ -32,7 +32,7 @@ std::string SurfaceMethod::info(const SolvedModel& solved, bool json) const {
   constexpr std::uint32_t kInfoBoxSamples = 33;
   const SolvedSurface& surface = solved.surface();
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (const PatchSamples& patch : surface.sample(kInfoBoxSamples))
+  for (const PatchSamples& patch : surface.sample(SampleOptions{kInfoBoxSamples}))
     for (const Vec3& p : patch.points) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);

@@ -72,11 +72,11 @@ bool commonEdge(const ClipPoint& p, const ClipPoint& q, std::uint32_t& a, std::u
 
 }  // namespace
 
-SpectralTessellateOptions chainMeasureOptions(std::size_t patches) {
-  SpectralTessellateOptions o;
-  o.uResolution =
+TessellateOptions chainMeasureOptions(std::size_t patches) {
+  TessellateOptions o;
+  o.resolution =
       static_cast<std::uint32_t>(std::max<std::size_t>(3, (256 + patches - 1) / patches + 1));
-  o.vResolution = 256;
+  o.aroundResolution = 256;
   return o;
 }
 
@@ -246,7 +246,7 @@ SectionRebuild rebuildFromSections(const Mesh& mesh, const SectionRebuildOptions
       model.curves.push_back(SampledCurve{c.points, {}, true});
     else
       model.curves.push_back(fitFourier(c, options.modes).curve);
-  out.chain = buildCrossSectionChain(model.curves, model.options);
+  out.chain = solve(model.curves, model.options);
   return out;
 }
 

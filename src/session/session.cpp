@@ -9,7 +9,7 @@ namespace pdesurf {
 std::shared_ptr<const SolvedModel> ModelSession::solveIfFixed(
     const std::shared_ptr<const AnyModel>& model) const {
   if (pdesurf::hasEditableParts(*model)) return nullptr;
-  return std::make_shared<const SolvedModel>(solveModel(model, source_));
+  return std::make_shared<const SolvedModel>(solve(model, source_));
 }
 
 ModelSession::ModelSession(AnyModel model, std::string source) : source_(std::move(source)) {
@@ -72,11 +72,9 @@ bool ModelSession::redo() {
 
 const SolvedModel& ModelSession::solved(const SolveOptions& options) {
   if (!hasEditableParts()) return *current_.solved;
-  const bool sameOptions =
-      options.solver == solvedOptions_.solver && options.seedFrame == solvedOptions_.seedFrame;
-  if (!current_.solved || solvedRevision_ != revision_ || !sameOptions) {
+  if (!current_.solved || solvedRevision_ != revision_ || options != solvedOptions_) {
     current_.solved = std::make_shared<const SolvedModel>(
-        solveModel(current_.model, source_, options, current_.topology));
+        pdesurf::solve(current_.model, source_, options, current_.topology));
     solvedRevision_ = revision_;
     solvedOptions_ = options;
   }

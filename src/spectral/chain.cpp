@@ -399,8 +399,7 @@ CrossSectionChain buildGlobalChain(const std::vector<ConditionData>& data,
 
 }  // namespace
 
-CrossSectionChain buildCrossSectionChain(std::span<const CurveInput> curves,
-                                         const CrossSectionOptions& options) {
+CrossSectionChain solve(std::span<const CurveInput> curves, const CrossSectionOptions& options) {
   const SpectralOperator op = SpectralOperator::fu(options.a);
   const auto count = static_cast<std::uint32_t>(curves.size());
   const bool exact = options.method == ChainMethod::ExactC2;

@@ -154,9 +154,12 @@ struct Piece {
 
 /// Tessellates consecutive pieces of a chain (one piece for a lone patch): the last row of
 /// a piece and the first row of the next are one row of vertices.
-Mesh tessellatePieces(const std::vector<Piece>& pieces, const SpectralTessellateOptions& options) {
-  const std::uint32_t rowsPer = std::max(options.uResolution, 2u);
-  const std::uint32_t cols = std::max(options.vResolution, 3u);
+Mesh tessellatePieces(const std::vector<Piece>& pieces, const TessellateOptions& options) {
+  checkTessellateOptions(options);
+  const std::uint32_t rowsPer = options.resolution;
+  // TessellateOptions::aroundResolution: 0 asks for 4 (rows − 1) columns, at least 8.
+  const std::uint32_t cols =
+      options.aroundResolution != 0 ? options.aroundResolution : std::max(4 * (rowsPer - 1), 8u);
   std::vector<double> vs(cols);
   for (std::uint32_t j = 0; j < cols; ++j) vs[j] = kTwoPi * j / cols;
   // Evaluate every piece; global rows: piece p row r → p·(rowsPer-1) + r.
@@ -260,11 +263,11 @@ Mesh tessellatePieces(const std::vector<Piece>& pieces, const SpectralTessellate
 
 }  // namespace
 
-Mesh tessellate(const SpectralPatch& patch, const SpectralTessellateOptions& options) {
+Mesh tessellate(const SpectralPatch& patch, const TessellateOptions& options) {
   return tessellatePieces({Piece{&patch, 0.0, 1.0}}, options);
 }
 
-Mesh tessellate(const CrossSectionChain& chain, const SpectralTessellateOptions& options) {
+Mesh tessellate(const CrossSectionChain& chain, const TessellateOptions& options) {
   std::vector<Piece> pieces;
   for (const ChainPatch& p : chain.patches) pieces.push_back({&p.patch, p.tStart, p.tEnd});
   return tessellatePieces(pieces, options);

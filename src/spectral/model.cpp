@@ -1,53 +1,37 @@
 // Spectral and cross-section models solved and tessellated (include/pdesurf/spectral_model.hpp).
-#include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "pdesurf/error.hpp"
 #include "pdesurf/spectral_model.hpp"
 
 namespace pdesurf {
 
-SpectralPatch solveModel(const SpectralModel& model, const std::string& source) {
+SolvedSpectral solve(const SpectralModel& model, const std::string& source) {
+  SolvedSpectral s;
+  s.type = "spectral";
   try {
-    SpectralPatch patch = solveSpectral(model.op, model.conditions, model.options);
+    SpectralPatch patch = solve(model.op, model.conditions, model.options);
     for (const SpineEdit& edit : model.spineEdits) patch = editSpine(patch, edit);
-    return patch;
+    s.patch = std::move(patch);
   } catch (const InvalidArgument& e) {
     throw ModelError(source, "$", e.what());
   }
+  return s;
 }
 
-CrossSectionChain solveModel(const CrossSectionModel& model, const std::string& source) {
+SolvedSpectral solve(const CrossSectionModel& model, const std::string& source) {
+  SolvedSpectral s;
+  s.type = "cross-sections";
   try {
-    return buildCrossSectionChain(model.curves, model.options);
+    s.chain = solve(model.curves, model.options);
   } catch (const InvalidArgument& e) {
     throw ModelError(source, "$.curves", e.what());
   }
-}
-
-SolvedSpectral solveSpectralModel(const SpectralModel& model, const std::string& source) {
-  SolvedSpectral s;
-  s.type = "spectral";
-  s.patch = solveModel(model, source);
   return s;
 }
 
-SolvedSpectral solveSpectralModel(const CrossSectionModel& model, const std::string& source) {
-  SolvedSpectral s;
-  s.type = "cross-sections";
-  s.chain = solveModel(model, source);
-  return s;
-}
-
-SpectralTessellateOptions spectralMeshOptions(std::uint32_t samples) {
-  SpectralTessellateOptions o;
-  o.uResolution = std::max(samples, 2u);
-  o.vResolution = std::max(4 * (o.uResolution - 1), 8u);
-  return o;
-}
-
-Mesh tessellate(const SolvedSpectral& solved, std::uint32_t samples) {
-  const SpectralTessellateOptions options = spectralMeshOptions(samples);
+Mesh tessellate(const SolvedSpectral& solved, const TessellateOptions& options) {
   return solved.chain ? tessellate(*solved.chain, options) : tessellate(*solved.patch, options);
 }
 

@@ -475,9 +475,8 @@ std::vector<double> placeCurves(std::span<const CurveInput> curves, UPlacement p
   return u;
 }
 
-SpectralPatch solveSpectral(const SpectralOperator& op,
-                            std::span<const SpectralCondition> conditions,
-                            const SpectralOptions& options) {
+SpectralPatch solve(const SpectralOperator& op, std::span<const SpectralCondition> conditions,
+                    const SpectralOptions& options) {
   op.validate();
   const std::size_t order = op.order();
   if (conditions.size() != order)

@@ -124,13 +124,13 @@ SurfacePoint VertexFramePatch::evaluate(double u, double v) const {
   return r;
 }
 
-VertexFrameSurface solve(const VertexFrameModel& model, const SolveOptions& options) {
+VertexFrameSurface solve(const VertexFrameModel& model, const VertexFrameSolveOptions& options) {
   return solve(model, std::make_shared<const FrameTopology>(buildTopology(model)), options);
 }
 
 VertexFrameSurface solve(const VertexFrameModel& model,
                          std::shared_ptr<const FrameTopology> topology,
-                         const SolveOptions& options) {
+                         const VertexFrameSolveOptions& options) {
   const auto nFrames = static_cast<std::uint32_t>(model.frames.size());
   VertexFrameSurface out;
   out.topology = std::move(topology);

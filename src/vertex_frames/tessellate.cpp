@@ -689,6 +689,7 @@ Mesh tessellate(const VertexFrameSurface& surface, const TessellateOptions& opti
 }
 
 void tessellate(const VertexFrameSurface& surface, const TessellateOptions& options, Mesh& mesh) {
+  checkTessellateOptions(options);
   TessellationEngine engine;
   engine.layOut(*surface.topology, static_cast<std::uint32_t>(surface.patches.size()),
                 options.resolution);
@@ -710,6 +711,7 @@ Tessellator& Tessellator::operator=(Tessellator&&) noexcept = default;
 
 const Mesh& Tessellator::tessellate(const VertexFrameSurface& surface,
                                     const TessellateOptions& options) {
+  checkTessellateOptions(options);
   if (!cache_) cache_ = std::make_unique<Cache>();  // moved from
   Cache& c = *cache_;
   const bool same = c.valid && c.topology == surface.topology &&

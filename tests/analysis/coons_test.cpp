@@ -120,14 +120,14 @@ TEST(Coons, TessellationAndCli) {
   const VertexFramePatch patch = curvedPatch(false);
   const CoonsBoundary b = boundaryOf(patch);
   const Mesh mesh = tessellate(
-      {CoonsPatch::bilinear(b), CoonsPatch::bicubic(b, seedTangents(b, zeroWeights()))}, 5);
+      {CoonsPatch::bilinear(b), CoonsPatch::bicubic(b, seedTangents(b, zeroWeights()))}, {5});
   EXPECT_EQ(mesh.vertexCount(), 2u * 25u);
   EXPECT_EQ(mesh.triangleCount(), 2u * 32u);
   for (std::size_t i = 0; i < mesh.vertexCount(); ++i) {
     const Vec3 n(mesh.normals[3 * i], mesh.normals[3 * i + 1], mesh.normals[3 * i + 2]);
     EXPECT_NEAR(n.norm(), 1.0, 1e-6);
   }
-  EXPECT_THROW(tessellate({CoonsPatch::bilinear(b)}, 1), InvalidArgument);
+  EXPECT_THROW(tessellate({CoonsPatch::bilinear(b)}, {1}), InvalidArgument);
 
   testing::TempDir work, capture;
   const std::string model = std::string(PDESURF_SOURCE_DIR) + "/examples/sculpt.json";

@@ -240,7 +240,7 @@ TEST(BSplinePde, SixthMixedDerivativeVanishesOnEverySpan) {
   for (KnotType ku : kKnotTypes)
     for (KnotType kv : kKnotTypes)
       for (auto [nu, nv] : {std::pair{3u, 3u}, {4u, 9u}, {12u, 5u}, {25u, 25u}}) {
-        const BSplineSurface s = solveBSplinePde(randomBoundary(nu, nv, rng), {ku, kv});
+        const BSplineSurface s = solve(randomBoundary(nu, nv, rng), {ku, kv});
         const auto [mask, eval] = sixthDerivativeResidual(s);
         EXPECT_LT(mask, kSixthDerivativeTolerance) << nu << "x" << nv;
         EXPECT_LT(eval, kSixthDerivativeTolerance) << nu << "x" << nv;
@@ -272,7 +272,7 @@ TEST(BSplinePde, KroneckerSolveEqualsDenseSolve) {
     for (KnotType kv : kKnotTypes)
       for (auto [nu, nv] : {std::pair{3u, 3u}, {4u, 6u}, {7u, 5u}, {9u, 9u}, {3u, 8u}}) {
         const ControlNet boundary = randomBoundary(nu, nv, rng);
-        const BSplineSurface s = solveBSplinePde(boundary, {ku, kv});
+        const BSplineSurface s = solve(boundary, {ku, kv});
         const std::vector<Mask> tu = masks(ku, nu), tv = masks(kv, nv);
         const int mu = static_cast<int>(nu) - 2, mv = static_cast<int>(nv) - 2;
         Eigen::MatrixXd t = Eigen::MatrixXd::Zero(mu * mv, mu * mv);
@@ -345,7 +345,7 @@ TEST(BSplinePde, KeepsGivenPointsAndReproducesKernelPolynomials) {
         for (std::uint32_t i = 0; i <= nu; ++i)
           for (std::uint32_t j = 0; j <= nv; ++j)
             if (!input.given(i, j)) input(i, j) = Vec3::Constant(std::nan(""));
-        const BSplineSurface s = solveBSplinePde(input, {ku, kv});
+        const BSplineSurface s = solve(input, {ku, kv});
         for (std::uint32_t i = 0; i <= nu; ++i)
           for (std::uint32_t j = 0; j <= nv; ++j) {
             if (input.given(i, j))
@@ -362,7 +362,7 @@ TEST(BSplinePde, SolverReusesFactorization) {
   for (int k = 0; k < 3; ++k) {
     const ControlNet net = randomBoundary(10, 7, rng);
     const BSplineSurface a = solver.solve(net);
-    const BSplineSurface b = solveBSplinePde(net, {KnotType::Clamped, KnotType::Uniform});
+    const BSplineSurface b = solve(net, {KnotType::Clamped, KnotType::Uniform});
     EXPECT_EQ(a.net().points, b.net().points);
   }
 }
@@ -379,21 +379,21 @@ void expectInvalid(F&& f, const std::string& fragment) {
 
 TEST(BSplinePde, RejectsBadNets) {
   std::mt19937 rng(19);
-  expectInvalid([] { solveBSplinePde(ControlNet(2, 5)); }, "at least 3");
+  expectInvalid([] { solve(ControlNet(2, 5)); }, "at least 3");
   expectInvalid([] { BSplineSurface(ControlNet(5, 1), KnotType::Uniform, KnotType::Uniform); },
                 "at least 3");
   ControlNet wrong = randomBoundary(5, 6, rng);
   wrong.points.pop_back();
-  expectInvalid([&] { solveBSplinePde(wrong); }, "has 42 points, got 41");
+  expectInvalid([&] { solve(wrong); }, "has 42 points, got 41");
   ControlNet nan = randomBoundary(5, 6, rng);
   nan(0, 2) = Vec3(0, std::nan(""), 0);
-  expectInvalid([&] { solveBSplinePde(nan); }, "control point (0, 2) is not finite");
+  expectInvalid([&] { solve(nan); }, "control point (0, 2) is not finite");
   nan(0, 2) = Vec3::Zero();
   nan(5, 6).x() = INFINITY;
-  expectInvalid([&] { solveBSplinePde(nan); }, "(5, 6)");
+  expectInvalid([&] { solve(nan); }, "(5, 6)");
   // Inner points are ignored by the solve, but a surface must be finite everywhere.
   const ControlNet innerNan = randomBoundary(5, 6, rng);
-  EXPECT_NO_THROW(solveBSplinePde(innerNan));
+  EXPECT_NO_THROW(solve(innerNan));
   expectInvalid([&] { BSplineSurface(innerNan, KnotType::Uniform, KnotType::Uniform); },
                 "control point (2, 2) is not finite");
   expectInvalid([] { BSplinePdeSolver(4, 2); }, "at least 3");
@@ -401,9 +401,9 @@ TEST(BSplinePde, RejectsBadNets) {
   ControlNet other = randomBoundary(5, 6, rng);
   expectInvalid([&] { solver.solveInPlace(other); }, "factored for nu = 5, nv = 5");
   expectInvalid([] { cubicKnots(KnotType::Clamped, 2); }, "at least 3");
-  const BSplineSurface s = solveBSplinePde(randomBoundary(5, 5, rng));
+  const BSplineSurface s = solve(randomBoundary(5, 5, rng));
   expectInvalid([&] { s.derivative(0.5, 0.5, 4, 0); }, "within 0..3");
-  expectInvalid([&] { tessellate(s, {0}); }, "segmentsPerSpan");
+  expectInvalid([&] { tessellate(s, {1}); }, "resolution must be at least 2");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -446,7 +446,7 @@ TEST(BSplineBoundary, TangentRuleAndCurvesGiveTheExactRows) {
       if (net.given(i, j)) {
         EXPECT_LT((net(i, j) - exact(i, j)).norm(), kSolveAgreementTolerance) << i << "," << j;
       }
-  const BSplineSurface s = solveBSplinePde(net);
+  const BSplineSurface s = solve(net);
   for (double t = 0.0; t <= 1.0; t += 0.05) {
     EXPECT_LT((s.position(0.0, t) - f(0.0, t)).norm(), kSolveAgreementTolerance);
     EXPECT_LT((s.position(1.0, t) - f(1.0, t)).norm(), kSolveAgreementTolerance);
@@ -591,7 +591,7 @@ TEST(BSplineExamples, SeedExamplesSolveThePde) {
   for (const Case& c : {Case{"example 1", example1(), KnotType::Uniform},
                         Case{"example 2", example2(), KnotType::Uniform},
                         Case{"example 3", example3(), KnotType::Clamped}}) {
-    const BSplineSurface s = solveBSplinePde(c.net, {c.knots, c.knots});
+    const BSplineSurface s = solve(c.net, {c.knots, c.knots});
     const auto [mask, eval] = sixthDerivativeResidual(s);
     EXPECT_LT(mask, kSixthDerivativeTolerance) << c.name;
     EXPECT_LT(eval, kSixthDerivativeTolerance) << c.name;
@@ -605,7 +605,7 @@ TEST(BSplineExamples, SeedExamplesSolveThePde) {
   }
   // Example 3 on clamped knots interpolates its boundary: the pole u = 0 and the
   // B-spline curves of the given rows 0 and n (a clamped surface's boundary is its rows).
-  const BSplineSurface s3 = solveBSplinePde(example3());
+  const BSplineSurface s3 = solve(example3());
   for (double v = 0.0; v <= 1.0; v += 0.125) {
     EXPECT_LT(s3.position(0.0, v).norm(), 1e-14);
     BSplineCurve last;
@@ -614,7 +614,7 @@ TEST(BSplineExamples, SeedExamplesSolveThePde) {
   }
   // Example 2: the PDE surface stays near the catenoid it was sampled from (the given points
   // fix only rows/columns 0, 1, 7): inner control points within 5% of the extent.
-  const BSplineSurface s2 = solveBSplinePde(example2(), {KnotType::Uniform, KnotType::Uniform});
+  const BSplineSurface s2 = solve(example2(), {KnotType::Uniform, KnotType::Uniform});
   double worst = 0.0;
   for (std::uint32_t i = 2; i < 7; ++i)
     for (std::uint32_t j = 2; j < 7; ++j)
@@ -624,10 +624,8 @@ TEST(BSplineExamples, SeedExamplesSolveThePde) {
 }
 
 TEST(BSplineTessellate, WatertightGridWithUnitAnalyticNormals) {
-  const BSplineSurface s = solveBSplinePde(example1(), {KnotType::Uniform, KnotType::Uniform});
-  BSplineTessellateOptions options;
-  options.segmentsPerSpan = 5;
-  const Mesh mesh = tessellate(s, options);
+  const BSplineSurface s = solve(example1(), {KnotType::Uniform, KnotType::Uniform});
+  const Mesh mesh = tessellate(s, {.resolution = 3 * 5 + 1});  // 3 spans a side: 5 segments each
   const std::uint32_t cu = 3 * 5, cv = 3 * 5;
   ASSERT_EQ(mesh.vertexCount(), static_cast<std::size_t>(cu + 1) * (cv + 1));
   ASSERT_EQ(mesh.triangleCount(), 2u * cu * cv);
@@ -653,7 +651,7 @@ TEST(BSplineTessellate, WatertightGridWithUnitAnalyticNormals) {
   // and at the pole they take the limit of the nearby ones, x_u(0,v) × x_uv(0,v) ∝ +x.
   // (Its solved interior folds near u ≈ 0.52, where x_u × x_v changes sign: a property of the
   // PDE surface from these rows, not of the mesh, so face/corner agreement is not asserted.)
-  const Mesh pole = tessellate(solveBSplinePde(example3()));
+  const Mesh pole = tessellate(solve(example3()), {.resolution = 8 * 6 + 1});  // 6 a span
   expectUnitNormals(pole);
   for (std::size_t v = 0; v <= 8 * 6; ++v) EXPECT_GT(pole.normals[3 * v], 0.9) << v;
 }

@@ -46,7 +46,7 @@ TEST_F(CliBSpline, BuildsSamplesAndReportsABlend) {
   const CliRun s = run("sample " + model + " --grid 5");
   ASSERT_EQ(s.code, 0) << s.err;
   const Json j = Json::parse(s.out);
-  const SolvedBSplinePde solved = solveBSplineModel(loadModel(model).get<BSplinePdeModel>(), model);
+  const SolvedBSplinePde solved = solve(loadModel(model).get<BSplinePdeModel>(), model);
   ASSERT_EQ(j["patches"].size(), 4u);
   for (std::size_t k = 0; k < 4; ++k) {
     const Json& p = j["patches"][k];

@@ -50,11 +50,9 @@ TEST_F(CliRebuildSections, WritesAModelThatLiesWhereItSays) {
   const CliRun info = run("info leg.json --json");
   ASSERT_EQ(info.code, 0) << info.err;
   EXPECT_EQ(Json::parse(info.out)["patches"], 12);
-  SpectralTessellateOptions t;
-  t.uResolution = 23;
-  t.vResolution = 256;
+  const TessellateOptions t{.resolution = 23, .aroundResolution = 256};
   const MeshDistance d =
-      meshDistance(tessellate(solveModel(*cs, "leg.json"), t), readMesh(work_.file("part.obj")));
+      meshDistance(tessellate(solve(*cs, "leg.json"), t), readMesh(work_.file("part.obj")));
   EXPECT_NEAR(d.aToB.rmsRelative, rms, 0.05 * rms);  // sampling differs, not the surface
 }
 

@@ -69,7 +69,7 @@ TEST_F(CliSpectral, SampleMatchesTheLibraryAndInfoReportsJoints) {
   ASSERT_EQ(s.code, 0) << s.err;
   const Json j = Json::parse(s.out);
   const auto model = loadModel(work_.file("lobes.json")).get<CrossSectionModel>();
-  const CrossSectionChain chain = solveModel(model, "lobes.json");
+  const CrossSectionChain chain = *solve(model, "lobes.json").chain;
   ASSERT_EQ(j["patches"].size(), chain.patches.size());
   for (std::size_t k = 0; k < chain.patches.size(); ++k) {
     const Json& p = j["patches"][k];

@@ -38,7 +38,7 @@ std::string netModel(std::uint32_t nu, std::uint32_t nv, F f, const std::string&
 std::string refusal(const std::string& text) {
   try {
     const AnyModel any = parseModel(text, "m.json");
-    solveBSplineModel(any.get<BSplinePdeModel>(), "m.json");
+    solve(any.get<BSplinePdeModel>(), "m.json");
   } catch (const ModelError& e) {
     return e.what();
   }
@@ -62,7 +62,7 @@ TEST(BSplinePdeIo, NetFormSolvesAndKeepsTheGivenPoints) {
     EXPECT_EQ(m.form, BSplinePdeModel::Form::Net);
     EXPECT_EQ(m.net.nu, 6u);
     EXPECT_EQ(m.net.nv, 4u);
-    const SolvedBSplinePde s = solveBSplineModel(m, "m.json");
+    const SolvedBSplinePde s = solve(m, "m.json");
     ASSERT_EQ(s.pieces.size(), 1u);
     EXPECT_FALSE(s.c1Gap.has_value());
     EXPECT_LT(pdeResidual(s.pieces[0]), kResidualTolerance) << knots;
@@ -103,7 +103,7 @@ TEST(BSplinePdeIo, BoundaryFormReproducesABicubicFromCurvesAndTangents) {
   doc += R"(, "uMinSecond": {"tangent": )" + samples([&](double t) { return du(0, t); }) + "}";
   doc += R"(, "vMinSecond": {"tangent": )" + samples([&](double t) { return dv(t, 0); }) + "}}}";
   const AnyModel any = parseModel(doc, "m.json");
-  const SolvedBSplinePde s = solveBSplineModel(any.get<BSplinePdeModel>(), "m.json");
+  const SolvedBSplinePde s = solve(any.get<BSplinePdeModel>(), "m.json");
   ASSERT_EQ(s.pieces.size(), 1u);
   // Tangent samples are linear between 41 points: the second rows are that close (λ/3 · h²).
   for (double u = 0; u <= 1.0; u += 0.125)
@@ -136,15 +136,14 @@ TEST(BSplinePdeIo, BlendsTessellateIntoOneWatertightMesh) {
       curve(ring(1, 0)), curve(ring(0.5, 1)));
   for (const auto& [doc, pieces, closedV] :
        {std::tuple{four, 4u, false}, std::tuple{closed, 2u, true}}) {
-    const SolvedBSplinePde s =
-        solveBSplineModel(parseModel(doc, "m.json").get<BSplinePdeModel>(), "m.json");
+    const SolvedBSplinePde s = solve(parseModel(doc, "m.json").get<BSplinePdeModel>(), "m.json");
     ASSERT_EQ(s.pieces.size(), pieces);
     EXPECT_EQ(s.closedV, closedV);
     ASSERT_TRUE(s.c1Gap.has_value());
     EXPECT_LT(*s.c1Gap, 1e-9);
     for (const BSplineSurface& p : s.pieces) EXPECT_LT(pdeResidual(p), kResidualTolerance);
     const std::uint32_t samples = 9;  // 3 spans per piece: 3 segments per span
-    const Mesh mesh = tessellate(s, samples);
+    const Mesh mesh = tessellate(s, {samples});
     const std::uint32_t side = 3 * 3;
     const std::size_t expectedVertices =
         closedV ? (side + 1) * (2 * side) : (2 * side + 1) * (2 * side + 1);
@@ -172,7 +171,7 @@ TEST(BSplinePdeIo, SerializedModelsReadBackTheSame) {
     const auto& back = again.get<BSplinePdeModel>();
     EXPECT_EQ(serializeModel(back), text) << path;
     EXPECT_EQ(back.form, model.form) << path;
-    const SolvedBSplinePde a = solveBSplineModel(model, path), b = solveBSplineModel(back, path);
+    const SolvedBSplinePde a = solve(model, path), b = solve(back, path);
     ASSERT_EQ(a.pieces.size(), b.pieces.size());
     for (std::size_t k = 0; k < a.pieces.size(); ++k)
       for (double u : {0.0, 0.3, 1.0})

@@ -67,7 +67,7 @@ TEST(SpectralIo, ParsesAUgailModelWithItsDefaults) {
   EXPECT_EQ(c.b[0], Vec3(0, 0.5, 0));
 
   // The model solves: positions at u = 0 and 1 are the circles.
-  const SpectralPatch p = solveModel(m, "m.json");
+  const SpectralPatch p = *solve(m, "m.json").patch;
   for (double v : {0.0, 1.0, 2.5}) {
     EXPECT_LT((p.position(0, v) - Vec3(std::cos(v), std::sin(v), 0)).norm(), 1e-12);
     EXPECT_LT((p.position(1, v) - Vec3(0.5 * std::cos(v), 0.5 * std::sin(v), 1)).norm(), 1e-12);
@@ -90,7 +90,7 @@ TEST(SpectralIo, ParsesFuCrossSectionsAndPointCurves) {
   EXPECT_FALSE(m.options.remainder);
   ASSERT_EQ(m.curves.size(), 6u);
   EXPECT_EQ(std::get<SampledCurve>(m.curves[0]).points.size(), 12u);
-  EXPECT_FALSE(solveModel(m, "c.json").patches.empty());
+  EXPECT_FALSE(solve(m, "c.json").chain->patches.empty());
 }
 
 TEST(SpectralIo, RefusesWithTheJsonPath) {
@@ -227,7 +227,7 @@ TEST(SpectralIo, SolverRefusalsNameTheFile) {
       circle(1, 0), circle(1, 0));
   const auto m = parseModel(text, "p.json").get<SpectralModel>();
   try {
-    solveModel(m, "p.json");
+    solve(m, "p.json");
     FAIL() << "solved a patch through two coinciding curves";
   } catch (const ModelError& e) {
     EXPECT_EQ(e.file(), "p.json");

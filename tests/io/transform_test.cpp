@@ -76,8 +76,8 @@ double framesDeviation(const VertexFrameModel& model, const AffineMap& map) {
 /// The same for a spectral or cross-section model over every patch's shown range.
 double spectralDeviation(const AnyModel& model, const AffineMap& map) {
   const auto solveAny = [](const AnyModel& m) {
-    return m.is<SpectralModel>() ? solveSpectralModel(m.get<SpectralModel>(), "test")
-                                 : solveSpectralModel(m.get<CrossSectionModel>(), "test");
+    return m.is<SpectralModel>() ? solve(m.get<SpectralModel>(), "test")
+                                 : solve(m.get<CrossSectionModel>(), "test");
   };
   const SolvedSpectral s = solveAny(model), t = solveAny(transformModel(model, map));
   EXPECT_EQ(s.patchCount(), t.patchCount());
@@ -325,8 +325,8 @@ TEST(TransformFrames, SessionTransformIsOneUndoStep) {
 
 /// max |map(x(u, v)) − x'(u, v)| over every piece, relative to the transformed extent.
 double bsplineDeviation(const BSplinePdeModel& model, const AffineMap& map) {
-  const SolvedBSplinePde s = solveBSplineModel(model, "test");
-  const SolvedBSplinePde t = solveBSplineModel(transformModel(model, map), "test");
+  const SolvedBSplinePde s = solve(model, "test");
+  const SolvedBSplinePde t = solve(transformModel(model, map), "test");
   EXPECT_EQ(s.pieces.size(), t.pieces.size());
   double worst = 0;
   Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);

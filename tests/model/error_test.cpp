@@ -151,7 +151,7 @@ TEST(Error, FilesThatCannotBeReadOrWrittenAreNamedInFile) {
 TEST(Error, ASolveOptionTheModelCannotTakeIsAnInvalidArgument) {
   const AnyModel model = loadModel(PDESURF_SOURCE_DIR "/examples/mug.json");
   SolveOptions options;
-  options.seedFrame = 1000000;
+  options.vertexFrames.seedFrame = 1000000;
   const auto e = caughtError<InvalidArgument>([&] { checkSolveOptions(model, options); });
   ASSERT_TRUE(e);
   EXPECT_TRUE(e->ofKind);

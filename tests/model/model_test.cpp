@@ -29,18 +29,18 @@ bool sameMesh(const Mesh& a, const Mesh& b) {
 Mesh engineMesh(const SolvedModel& solved, std::uint32_t resolution) {
   if (const auto* s = solved.surface().as<VertexFrameSurface>())
     return tessellate(*s, {resolution});
-  if (const auto* s = solved.surface().as<SolvedSpectral>()) return tessellate(*s, resolution);
-  return tessellate(solved.surface().get<SolvedBSplinePde>(), resolution);
+  if (const auto* s = solved.surface().as<SolvedSpectral>()) return tessellate(*s, {resolution});
+  return tessellate(solved.surface().get<SolvedBSplinePde>(), {resolution});
 }
 
 TEST(Model, EveryExampleSolvesTessellatesAndSamplesThroughOneType) {
   constexpr std::uint32_t kResolution = 9, kGrid = 3;
   for (const std::string& path : exampleFiles()) {
     SCOPED_TRACE(path);
-    const SolvedModel solved = loadAndSolve(path);
+    const SolvedModel solved = solve(loadModel(path), path);
     EXPECT_EQ(solved.type(), std::string(modelTypeName(loadModel(path))));
     EXPECT_TRUE(sameMesh(tessellate(solved, {kResolution}), engineMesh(solved, kResolution)));
-    const std::vector<PatchSamples> samples = sample(solved, kGrid);
+    const std::vector<PatchSamples> samples = sample(solved, {kGrid});
     ASSERT_FALSE(samples.empty());
     for (std::size_t k = 0; k < samples.size(); ++k) {
       EXPECT_EQ(samples[k].index, k);
@@ -58,15 +58,15 @@ TEST(Model, EveryExampleSolvesTessellatesAndSamplesThroughOneType) {
 }
 
 TEST(Model, OverlayDrawsControlPolygonsOfBSplinesAndNothingForFrames) {
-  const SolvedModel bspline = loadAndSolve(example("bspline-blend.json"));
+  const SolvedModel bspline = solve(loadModel(example("bspline-blend.json")), "bspline-blend.json");
   std::size_t lines = 0;
   for (const BSplineSurface& piece : bspline.surface().get<SolvedBSplinePde>().pieces)
     lines += piece.net().nu + 1 + piece.net().nv + 1;
   EXPECT_EQ(overlay(bspline).curves.size(), lines);
   EXPECT_TRUE(overlay(bspline).spines.empty());
-  const ModelOverlay frames = overlay(loadAndSolve(example("mug.json")));
+  const ModelOverlay frames = overlay(solve(loadModel(example("mug.json")), "mug.json"));
   EXPECT_TRUE(frames.curves.empty() && frames.spines.empty());
-  const SolvedModel shell = loadAndSolve(example("shell.json"));
+  const SolvedModel shell = solve(loadModel(example("shell.json")), "shell.json");
   EXPECT_EQ(overlay(shell).spines.size(), shell.spectral()->patchCount());
 }
 
@@ -74,17 +74,74 @@ TEST(Model, SeedFrameOutOfRangeIsRefusedForFramesOnly) {
   const AnyModel mug = loadModel(example("mug.json"));
   const std::size_t frames = mug.get<VertexFrameModel>().frames.size();
   SolveOptions options;
-  options.seedFrame = static_cast<std::uint32_t>(frames);
+  options.vertexFrames.seedFrame = static_cast<std::uint32_t>(frames);
   EXPECT_THROW(checkSolveOptions(mug, options), InvalidArgument);
-  options.seedFrame = static_cast<std::uint32_t>(frames - 1);
+  options.vertexFrames.seedFrame = static_cast<std::uint32_t>(frames - 1);
   EXPECT_NO_THROW(checkSolveOptions(mug, options));
-  options.seedFrame = 1000;  // other types have no seed frame to check
+  options.vertexFrames.seedFrame = 1000;  // the vertex frames' member: other types ignore it
   EXPECT_NO_THROW(checkSolveOptions(loadModel(example("shell.json")), options));
 }
 
+TEST(Model, VertexFrameSolveOptionsChangeNothingForTheOtherMethods) {
+  SolveOptions local;
+  local.vertexFrames = {Solver::Local, 1000};  // a seed frame no example has
+  for (const std::string& path : exampleFiles()) {
+    const AnyModel model = loadModel(path);
+    if (model.is<VertexFrameModel>()) continue;
+    SCOPED_TRACE(path);
+    EXPECT_NO_THROW(checkSolveOptions(model, local));
+    EXPECT_TRUE(
+        sameMesh(tessellate(solve(model, path, local), {9}), tessellate(solve(model, path), {9})));
+  }
+}
+
+TEST(Model, EveryTessellateChecksItsOptions) {
+  for (const std::string& path : exampleFiles()) {
+    SCOPED_TRACE(path);
+    const SolvedModel solved = solve(loadModel(path), path);
+    EXPECT_THROW(tessellate(solved, {.resolution = 1}), InvalidArgument);
+    EXPECT_THROW(tessellate(solved, {.resolution = 9, .aroundResolution = 2}), InvalidArgument);
+    EXPECT_NO_THROW(tessellate(solved, {.resolution = 2}));
+  }
+  const SolvedModel blend = solve(loadModel(example("bspline-blend.json")), "bspline-blend.json");
+  const BSplineSurface& piece = blend.surface().get<SolvedBSplinePde>().pieces.front();
+  EXPECT_THROW(tessellate(piece, {.resolution = 0}), InvalidArgument);
+  const SolvedModel shell = solve(loadModel(example("shell.json")), "shell.json");
+  EXPECT_THROW(tessellate(*shell.spectral()->patch, {.resolution = 1}), InvalidArgument);
+}
+
+TEST(Model, SpectralColumnsAroundDefaultToFourARowAndAtLeastEight) {
+  const SolvedModel shell = solve(loadModel(example("shell.json")), "shell.json");
+  const SolvedSpectral& s = *shell.spectral();
+  const Mesh nine = tessellate(s, {.resolution = 9});
+  EXPECT_TRUE(sameMesh(nine, tessellate(s, {.resolution = 9, .aroundResolution = 32})));
+  EXPECT_FALSE(sameMesh(nine, tessellate(s, {.resolution = 9, .aroundResolution = 31})));
+  EXPECT_TRUE(sameMesh(tessellate(s, {.resolution = 2}),
+                       tessellate(s, {.resolution = 2, .aroundResolution = 8})));
+}
+
+// docs/library.md, "Names and options": the page's example as written there, and what it
+// says of it.
+TEST(Model, TheLibraryPagesNamingExample) {
+  const AnyModel model = loadModel(example("mug.json"));
+  SolveOptions solveOptions;
+  solveOptions.vertexFrames.solver = Solver::Local;  // read by vertex frames alone
+  const SolvedModel solved = solve(model, "mug.json", solveOptions);
+  const Mesh mesh = tessellate(solved, {.resolution = 9});
+  const auto samples = sample(solved, {.grid = 5});
+  const VertexFrameSurface& frames = *solved.frames();
+  const Mesh same = tessellate(frames, {.resolution = 9});
+  EXPECT_TRUE(sameMesh(mesh, same));
+  EXPECT_EQ(solved.options().vertexFrames.solver, Solver::Local);
+  ASSERT_EQ(samples.size(), frames.patches.size());
+  EXPECT_EQ(samples.front().points.size(), 25u);
+  const VertexFrameSurface global = solve(model.get<VertexFrameModel>());
+  EXPECT_FALSE(sameMesh(mesh, tessellate(global, {.resolution = 9})));  // the option was read
+}
+
 TEST(Model, TessellatorKeepsItsLayoutUntilTheTrianglesChange) {
-  const SolvedModel shell = loadAndSolve(example("shell.json"));
-  const SolvedModel mug = loadAndSolve(example("mug.json"));
+  const SolvedModel shell = solve(loadModel(example("shell.json")), "shell.json");
+  const SolvedModel mug = solve(loadModel(example("mug.json")), "mug.json");
   ModelTessellator t;
   t.tessellate(shell, {9});
   const std::uint64_t first = t.layoutVersion();

@@ -192,7 +192,7 @@ TEST(ToyMethod, RegistryFindsItByTypeNameAndByModel) {
 
 TEST(ToyMethod, SolvesTessellatesSamplesAndWritesBack) {
   registerToy();
-  const SolvedModel solved = solveModel(parseModel(kToyText, "toy.json"), "toy.json");
+  const SolvedModel solved = solve(parseModel(kToyText, "toy.json"), "toy.json");
   const auto& corners = solved.model().get<CoonsToyModel>().patches;
   ASSERT_EQ(solved.surface().patchCount(), 2u);
   EXPECT_EQ(largestC0Gap(solved), 0.0);

@@ -185,7 +185,7 @@ TEST_P(RoundTrip, BSplinePdeSurfacesAreExact) {
       for (std::uint32_t j = 0; j <= 5; ++j)
         net(i, j) = Vec3(i, j + (type == KnotType::Clamped ? 8.0 : 0.0),
                          std::sin(0.9 * i) * std::cos(0.6 * j) + 0.1 * i * j);
-    surfaces.push_back(solveBSplinePde(net, {type, type}));
+    surfaces.push_back(solve(net, {type, type}));
   }
   for (const BSplineSurface& s : surfaces)
     patches.push_back({[&s](double u, double v) { return s.position(u, v); }});

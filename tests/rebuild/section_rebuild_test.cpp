@@ -57,10 +57,10 @@ struct Measured {
 Measured measure(const Mesh& mesh, const SectionRebuildOptions& options) {
   const SectionRebuild r = rebuildFromSections(mesh, options);
   const Mesh part = sectionedPart(mesh, options.slice.axis, r.sections);
-  SpectralTessellateOptions t;
-  t.uResolution =
+  TessellateOptions t;
+  t.resolution =
       std::max<std::uint32_t>(3, 256 / static_cast<std::uint32_t>(r.chain.patches.size()) + 1);
-  t.vResolution = 256;
+  t.aroundResolution = 256;
   const MeshDistance d = meshDistance(tessellate(r.chain, t), part);
   return {std::max(d.aToB.rmsRelative, d.bToA.rmsRelative),
           std::max(d.aToB.maxRelative, d.bToA.maxRelative)};

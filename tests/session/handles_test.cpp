@@ -43,7 +43,7 @@ std::vector<std::string> shapeModelFiles() {
         continue;
       try {
         // The format's refusals (files that do not parse or solve) are no models.
-        solveModel(loadModel(entry.path().string()), entry.path().string());
+        solve(loadModel(entry.path().string()), entry.path().string());
       } catch (const ModelError&) {
         continue;
       }
@@ -83,7 +83,7 @@ TEST(Handles, AreTheModelFilesPoints) {
     SCOPED_TRACE(path);
     std::ifstream in(path);
     const Json file = Json::parse(in);
-    const SolvedModel solved = solveModel(loadModel(path), path);
+    const SolvedModel solved = solve(loadModel(path), path);
     const ModelHandles handles = solved.model().method().handles(solved);
     const auto refJson = [](const CurveRef& r) {
       return r.name.empty() ? Json(r.index) : Json(r.name);
@@ -140,7 +140,7 @@ TEST(Handles, SpectralTangentsStartOnTheirPositionCurve) {
     std::ifstream in(path);
     const Json file = Json::parse(in);
     if (file["type"] != "spectral") continue;
-    const SolvedModel solved = solveModel(loadModel(path), path);
+    const SolvedModel solved = solve(loadModel(path), path);
     for (const ModelHandle& h : solved.model().method().handles(solved).points) {
       if (h.kind != ModelHandle::Kind::Tangent) continue;
       ++count;
@@ -168,7 +168,7 @@ TEST(Handles, BSplineTangentRowsStartOnTheirSide) {
   const std::string path = testing::example("bspline-dome.json");
   std::ifstream in(path);
   const Json file = Json::parse(in);
-  const SolvedModel solved = solveModel(loadModel(path), path);
+  const SolvedModel solved = solve(loadModel(path), path);
   std::size_t count = 0;
   for (const ModelHandle& h : solved.model().method().handles(solved).points) {
     if (h.kind != ModelHandle::Kind::Tangent) continue;
@@ -190,7 +190,7 @@ TEST(Handles, BSplineTangentRowsStartOnTheirSide) {
 
 TEST(Handles, SpinePointsAreSpineHandles) {
   const std::string path = testing::example("shell.json");
-  const SolvedModel solved = solveModel(loadModel(path), path);
+  const SolvedModel solved = solve(loadModel(path), path);
   const SpineHandles spine = spineHandles(solved, 9);
   std::vector<Vec3> points;
   std::vector<double> u;
@@ -208,7 +208,7 @@ TEST(Handles, SpinePointsAreSpineHandles) {
 TEST(Handles, VertexFramesHaveNoneOfTheirOwn) {
   // Their handles are their vertices, which the studio's frame tools edit.
   const std::string path = testing::example("mug.json");
-  const SolvedModel solved = solveModel(loadModel(path), path);
+  const SolvedModel solved = solve(loadModel(path), path);
   const ModelHandles handles = solved.model().method().handles(solved);
   EXPECT_TRUE(handles.points.empty());
   EXPECT_TRUE(handles.curves.empty());

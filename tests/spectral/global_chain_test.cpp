@@ -96,7 +96,7 @@ CrossSectionChain chainOf(const Case& c, int count, const CrossSectionOptions& b
     curves.push_back(c.section(s, o.modes));
     o.u.push_back(s);  // the surface's own parameter: errors are parametric
   }
-  return buildCrossSectionChain(curves, o);
+  return solve(curves, o);
 }
 
 /// max over a grid of |chain(u, v) − surface(s(u), v)|: an upper bound of the distance.
@@ -227,14 +227,14 @@ TEST(GlobalChain, TwoHundredSectionsLoseNoAccuracy) {
 TEST(GlobalChain, SpacingFollowsCentroidsAndIsRefusedWhenItCollapses) {
   std::vector<CurveInput> curves;
   for (double z : {0.0, 0.5, 2.0}) curves.push_back(starSection(z, 4));
-  const CrossSectionChain chain = buildCrossSectionChain(curves, {});
+  const CrossSectionChain chain = solve(curves, {});
   ASSERT_EQ(chain.curveU.size(), 3u);
   EXPECT_DOUBLE_EQ(chain.curveU[0], 0.0);
   EXPECT_NEAR(chain.curveU[1], 0.25, 1e-15);
   EXPECT_DOUBLE_EQ(chain.curveU[2], 1.0);
   curves[1] = starSection(0.0, 4);  // same centroid as curve 0
   try {
-    buildCrossSectionChain(curves, {});
+    solve(curves, {});
     FAIL() << "coincident centroids accepted";
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("curves 0 and 1 have the same centroid"),
@@ -243,10 +243,10 @@ TEST(GlobalChain, SpacingFollowsCentroidsAndIsRefusedWhenItCollapses) {
   }
   CrossSectionOptions uniform;
   uniform.spacing = ChainSpacing::Uniform;  // then the same curves are fine
-  EXPECT_NEAR(buildCrossSectionChain(curves, uniform).curveU[1], 0.5, 1e-15);
+  EXPECT_NEAR(solve(curves, uniform).curveU[1], 0.5, 1e-15);
   CrossSectionOptions given;
   given.u = {0.0, 2.0, 1.0};
-  EXPECT_THROW(buildCrossSectionChain(curves, given), InvalidArgument);
+  EXPECT_THROW(solve(curves, given), InvalidArgument);
 }
 
 /// Short patches: the series basis (basis.hpp) is y_k with y_k^(j)(0) = δ_jk, which the

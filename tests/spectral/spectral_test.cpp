@@ -156,7 +156,7 @@ void checkModeAgainstShooting(const SpectralOperator& op, std::uint32_t n,
     conds.push_back({0, tc[i], f});
   }
   const SpectralPatch patch =
-      solveSpectral(op, conds, {n, UPlacement::Given, VParameterization::Uniform, false});
+      solve(op, conds, {n, UPlacement::Given, VParameterization::Uniform, false});
   std::vector<double> ts = tc;
   for (int k = 1; k < 20; ++k) ts.push_back(std::round(kSteps * (k / 20.0 + 0.013)) / kSteps);
   std::sort(ts.begin(), ts.end());
@@ -223,8 +223,8 @@ TEST(SpectralPatch, PositionAndDerivativeConditionsAreMet) {
                                       {0, 1.0, ring(0.9, Vec3(0, 0, 3), m, 0.1)}};
   c[1].u = 1.0 / 3.0;
   c[4].u = 2.0 / 3.0;
-  const SpectralPatch p = solveSpectral(SpectralOperator::ugail(4), c,
-                                        {m, UPlacement::Given, VParameterization::Uniform, true});
+  const SpectralPatch p = solve(SpectralOperator::ugail(4), c,
+                                {m, UPlacement::Given, VParameterization::Uniform, true});
   EXPECT_FALSE(p.hasRemainder());
   EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);
   EXPECT_DOUBLE_EQ(p.conditions()[2].u, 1.0 / 3.0);  // derivative takes its position's u
@@ -240,7 +240,7 @@ TEST(SpectralPatch, FuConditionsMetForManyModes) {
         curves.push_back(f);
       }
       const SpectralPatch p =
-          solveSpectral(SpectralOperator::fu(a), positions(curves), {m, UPlacement::Uniform});
+          solve(SpectralOperator::fu(a), positions(curves), {m, UPlacement::Uniform});
       EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance) << "a " << a << " M " << m;
     }
 }
@@ -280,7 +280,7 @@ TEST(SpectralPatch, PdeResidualVanishesForBandLimitedInput) {
     std::vector<FourierCurve> curves;
     for (std::uint32_t i = 0; i < op.order(); ++i)
       curves.push_back(ring(1.0 + 0.3 * std::cos(i), Vec3(0.2 * i, 0.1 * i * i, i), m, 0.15, 0.1));
-    const SpectralPatch p = solveSpectral(op, positions(curves), {m, UPlacement::Uniform});
+    const SpectralPatch p = solve(op, positions(curves), {m, UPlacement::Uniform});
     EXPECT_LT(pdeResidual(p), kPdeResidualTolerance) << "order " << op.order();
   }
 }
@@ -309,7 +309,7 @@ TEST(SpectralPatch, SeedKleinBottleAtOrderFortyIsSolvedInQuadPrecision) {
   // a = N = 20 (the default): mode 1's roots ±20 of multiplicity 20 give a condition matrix
   // of condition ~1e23, beyond long double; the engine redoes that mode in quad.
   const SpectralPatch p =
-      solveSpectral(SpectralOperator::ugail(20), kleinConditions(), {6, UPlacement::Uniform});
+      solve(SpectralOperator::ugail(20), kleinConditions(), {6, UPlacement::Uniform});
   EXPECT_EQ(p.precision(1), ModePrecision::Quad);
   EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);
   // The grid and tessellation paths evaluate the quad mode as position() does.
@@ -329,7 +329,7 @@ TEST(SpectralPatch, SeedKleinBottleAtOrderFortyIsSolvedInQuadPrecision) {
                         (grid.dv[k] - p.derivative(us[i], vs[j], 0, 1)).norm()});
     }
   EXPECT_LT(worst, 1e-12 * size);
-  const SpectralTessellateOptions o{11, 8};
+  const TessellateOptions o{.resolution = 11, .aroundResolution = 8};
   const Mesh mesh = tessellate(p, o);
   ASSERT_EQ(mesh.vertexCount(), 11u * 8u);
   double meshWorst = 0.0, meshSize = 0.0;
@@ -354,7 +354,7 @@ TEST(SpectralPatch, OrderFortyWithSmoothDataIsSolvedInThePrecisionItNeeds) {
     curves.push_back(
         ring(1.0 + 0.2 * std::sin(0.3 * i), Vec3(std::cos(0.1 * i), 0, 0.1 * i), 6, 0.1));
   const SpectralPatch p =
-      solveSpectral(SpectralOperator::ugail(20), positions(curves), {6, UPlacement::Uniform});
+      solve(SpectralOperator::ugail(20), positions(curves), {6, UPlacement::Uniform});
   EXPECT_EQ(p.precision(1), ModePrecision::Extended);
   EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);
 }
@@ -367,11 +367,11 @@ TEST(SpectralPatch, ModesLongDoubleCanSolveStayInLongDoubleOrDouble) {
   for (int i = 0; i < 10; ++i)
     curves.push_back(ring(1.0 + 0.3 * std::sin(0.7 * i), Vec3(0.2 * i, 0, i), 6, 0.1, 0.05));
   const SpectralPatch p =
-      solveSpectral(SpectralOperator::ugail(5), positions(curves), {6, UPlacement::Uniform});
+      solve(SpectralOperator::ugail(5), positions(curves), {6, UPlacement::Uniform});
   for (std::uint32_t n = 0; n <= 6; ++n) EXPECT_EQ(p.precision(n), ModePrecision::Double) << n;
   EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);
   const SpectralPatch q =
-      solveSpectral(SpectralOperator::ugail(5, 3.0), positions(curves), {6, UPlacement::Uniform});
+      solve(SpectralOperator::ugail(5, 3.0), positions(curves), {6, UPlacement::Uniform});
   EXPECT_EQ(q.precision(1), ModePrecision::Extended);
   for (std::uint32_t n = 0; n <= 6; ++n) EXPECT_NE(q.precision(n), ModePrecision::Quad) << n;
   EXPECT_LT(maxOf(conditionErrors(q)), kConditionTolerance);
@@ -391,7 +391,7 @@ TEST(SpectralPatch, RemainderOfAnIllConditionedModeIsEvaluatedInQuad) {
     }
     c.push_back({0, std::nullopt, s});
   }
-  const SpectralPatch p = solveSpectral(SpectralOperator::ugail(20), c, {1, UPlacement::Uniform});
+  const SpectralPatch p = solve(SpectralOperator::ugail(20), c, {1, UPlacement::Uniform});
   EXPECT_TRUE(p.hasRemainder());
   EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);
 }
@@ -403,8 +403,8 @@ TEST(SpectralPatch, TooIllConditionedModesAreRefusedNotReturned) {
   std::vector<FourierCurve> curves;
   for (int k = 0; k < 40; ++k) curves.push_back(kleinSection(kTwoPi * k / 39));
   try {
-    const SpectralPatch p = solveSpectral(SpectralOperator::ugail(20, 10.0), positions(curves),
-                                          {6, UPlacement::Uniform});
+    const SpectralPatch p =
+        solve(SpectralOperator::ugail(20, 10.0), positions(curves), {6, UPlacement::Uniform});
     EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);  // if it solves, it must be right
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("do not determine mode 1"), std::string::npos) << e.what();
@@ -420,8 +420,8 @@ TEST(SpectralPatch, RemainderMeetsSampledCurvesAtEverySample) {
     c.push_back({0, std::nullopt, squircle(1.0 + 0.2 * i, i, 80, 0.2 * i)});
   for (bool remainder : {true, false}) {
     const SpectralPatch p =
-        solveSpectral(SpectralOperator::ugail(2), c,
-                      {6, UPlacement::Uniform, VParameterization::ChordLength, remainder});
+        solve(SpectralOperator::ugail(2), c,
+              {6, UPlacement::Uniform, VParameterization::ChordLength, remainder});
     EXPECT_EQ(p.hasRemainder(), remainder);
     const double err = maxOf(conditionErrors(p));
     if (remainder)
@@ -441,7 +441,7 @@ TEST(SpectralPatch, RemainderCarriesFourierTailsBeyondM) {
     curves.push_back(f);
   }
   const SpectralPatch p =
-      solveSpectral(SpectralOperator::fu(1.0), positions(curves), {6, UPlacement::Uniform});
+      solve(SpectralOperator::fu(1.0), positions(curves), {6, UPlacement::Uniform});
   EXPECT_TRUE(p.hasRemainder());
   EXPECT_LT(maxOf(conditionErrors(p)), kConditionTolerance);
 }
@@ -488,7 +488,7 @@ TEST(SpectralSpine, EditMovesTheSurfaceByExactlyTheSpineDifference) {
   std::vector<FourierCurve> curves;
   for (int i = 0; i < 6; ++i) curves.push_back(ring(1.0, Vec3(0.1 * i, 0, i), 4, 0.1));
   const SpectralPatch p =
-      solveSpectral(SpectralOperator::ugail(3), positions(curves), {4, UPlacement::Uniform});
+      solve(SpectralOperator::ugail(3), positions(curves), {4, UPlacement::Uniform});
   SpineEdit edit;
   for (double u : {0.0, 0.3, 0.6, 1.0}) {
     edit.u.push_back(u);
@@ -537,7 +537,7 @@ TEST(SpectralChain, MethodTwoJoinsAreExactlyC2AndInterpolateEveryCurve) {
         CrossSectionOptions o;
         o.method = ChainMethod::ExactC2;
         o.a = a;
-        const CrossSectionChain chain = buildCrossSectionChain(curves, o);
+        const CrossSectionChain chain = solve(curves, o);
         for (const JointGap& g : measureJointGaps(chain)) {
           EXPECT_LT(g.c0Relative, kJointTolerance);
           EXPECT_LT(g.c1Relative, kJointTolerance);
@@ -559,7 +559,7 @@ TEST(SpectralChain, MethodTwoJoinsAreExactlyC2AndInterpolateEveryCurve) {
 TEST(SpectralChain, MethodOneGapsAreMeasuredNotZero) {
   CrossSectionOptions o;
   o.method = ChainMethod::SharedCurves;
-  const CrossSectionChain chain = buildCrossSectionChain(bentTube(12, false), o);
+  const CrossSectionChain chain = solve(bentTube(12, false), o);
   ASSERT_EQ(chain.patches.size(), 3u);             // seed 002: C1-C6, C4-C9, C7-C12
   EXPECT_EQ(chain.patches[0].shownLastCurve, 3u);  // shown up to C4 (t = 0.6)
   EXPECT_DOUBLE_EQ(chain.patches[0].tEnd, 0.6);
@@ -589,14 +589,14 @@ TEST(SpectralErrors, BadInputIsNamed) {
                                           ring(1, Vec3(0, 0, 2), 2), ring(1, Vec3(0, 0, 3), 2)};
   expectError([] { SpectralOperator::fu(0.0); }, "a != 0");
   expectError([] { SpectralOperator::ugail(0); }, "N >= 1");
-  expectError([&] { solveSpectral(SpectralOperator::ugail(3), positions(four)); },
+  expectError([&] { solve(SpectralOperator::ugail(3), positions(four)); },
               "needs 6 conditions, got 4");
   expectError(
       [&] {
         auto c = positions(four);
         c[1].u = 0.0;
         c[0].u = 0.0;
-        solveSpectral(SpectralOperator::ugail(2), c, {2, UPlacement::Given});
+        solve(SpectralOperator::ugail(2), c, {2, UPlacement::Given});
       },
       "no u given");
   expectError(
@@ -604,7 +604,7 @@ TEST(SpectralErrors, BadInputIsNamed) {
         auto c = positions(four);
         for (auto& x : c) x.u = 0.5;
         c[3].u = 1.0;
-        solveSpectral(SpectralOperator::ugail(2), c, {2, UPlacement::Given});
+        solve(SpectralOperator::ugail(2), c, {2, UPlacement::Given});
       },
       "both fix derivative 0 at u = 0.5");
   expectError(
@@ -614,7 +614,7 @@ TEST(SpectralErrors, BadInputIsNamed) {
           c[i].derivative = 1;
           c[i].u = i / 3.0;
         }
-        solveSpectral(SpectralOperator::ugail(2), c, {2, UPlacement::Given});
+        solve(SpectralOperator::ugail(2), c, {2, UPlacement::Given});
       },
       "do not determine mode 0");
   SampledCurve open = squircle(1, 0, 20);
@@ -631,23 +631,23 @@ TEST(SpectralErrors, BadInputIsNamed) {
                                    ring(1, Vec3(0, 0, 2), 2)};
   CrossSectionOptions c2;
   c2.method = ChainMethod::ExactC2;
-  expectError([&] { buildCrossSectionChain(three, c2); }, "at least 4 curves, got 3");
-  expectError([&] { buildCrossSectionChain(std::span(three).first(1)); },
+  expectError([&] { solve(three, c2); }, "at least 4 curves, got 3");
+  expectError([&] { solve(std::span(three).first(1)); },
               "(method \"global\") needs at least 2 curves, got 1");
   CrossSectionOptions m1;
   m1.method = ChainMethod::SharedCurves;
-  expectError([&] { buildCrossSectionChain(bentTube(5, false), m1); }, "at least 6");
+  expectError([&] { solve(bentTube(5, false), m1); }, "at least 6");
   std::vector<CurveInput> pinched = bentTube(6, true);
   SampledCurve point;
   point.points.assign(20, Vec3(0, 0, 1.5));
   pinched[2] = point;
-  expectError([&] { buildCrossSectionChain(pinched); }, "curve 2: degenerate section");
+  expectError([&] { solve(pinched); }, "curve 2: degenerate section");
   std::vector<CurveInput> same = {ring(1, Vec3(0, 0, 0), 2), ring(1, Vec3(0, 0, 0), 2)};
   expectError([&] { placeCurves(same, UPlacement::ChordLength, VParameterization::Uniform); },
               "coincide");
   expectError(
       [&] {
-        editSpine(solveSpectral(SpectralOperator::ugail(2), positions(four), {2}),
+        editSpine(solve(SpectralOperator::ugail(2), positions(four), {2}),
                   SpineEdit{{0.5, 0.2}, {Vec3::Zero(), Vec3::Zero()}});
       },
       "increase strictly");
@@ -668,8 +668,8 @@ TEST(SpectralTessellate, TubeIsWatertightAcrossTheSeamWithOutwardNormals) {
   std::vector<FourierCurve> curves;
   for (int i = 0; i < 4; ++i) curves.push_back(ring(1.0 + 0.1 * i, Vec3(0, 0, i), 3, 0.1));
   const SpectralPatch p =
-      solveSpectral(SpectralOperator::ugail(2), positions(curves), {3, UPlacement::Uniform});
-  SpectralTessellateOptions o{9, 16};
+      solve(SpectralOperator::ugail(2), positions(curves), {3, UPlacement::Uniform});
+  TessellateOptions o{.resolution = 9, .aroundResolution = 16};
   const Mesh mesh = tessellate(p, o);
   EXPECT_EQ(mesh.vertexCount(), 9u * 16u);  // the seam column is shared
   const auto stats = testing::edgeStats(mesh);
@@ -692,8 +692,8 @@ TEST(SpectralTessellate, ChainSharesJointVerticesAndTipsCollapse) {
   SampledCurve tip;
   tip.points.assign(20, Vec3(0, 0, -0.5));
   curves.insert(curves.begin(), tip);  // a collapsed first section: a closed end
-  const CrossSectionChain chain = buildCrossSectionChain(curves);
-  SpectralTessellateOptions o{5, 12};
+  const CrossSectionChain chain = solve(curves);
+  TessellateOptions o{.resolution = 5, .aroundResolution = 12};
   const Mesh mesh = tessellate(chain, o);
   const std::size_t rows = chain.patches.size() * 4 + 1;
   EXPECT_EQ(mesh.vertexCount(), (rows - 1) * 12 + 1);  // joints shared, the tip is one vertex

@@ -45,10 +45,10 @@ TEST(MeshSlots, LendTheSentMeshOnlyForItsRevisionSolverAndResolution) {
   EXPECT_EQ(slots.sent(resolution, 2, global), nullptr);      // another revision
   EXPECT_EQ(slots.sent(resolution + 1, 1, global), nullptr);  // another resolution
   SolveOptions local;
-  local.solver = Solver::Local;
+  local.vertexFrames.solver = Solver::Local;
   EXPECT_EQ(slots.sent(resolution, 1, local), nullptr);  // solved another way
-  local.solver = Solver::Global;
-  local.seedFrame = 1;
+  local.vertexFrames.solver = Solver::Global;
+  local.vertexFrames.seedFrame = 1;
   EXPECT_EQ(slots.sent(resolution, 1, local), nullptr);
 
   // An edit, and the next mesh sent as a delta against the first: the slot now lends the

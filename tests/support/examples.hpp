@@ -30,9 +30,10 @@ inline std::vector<std::string> exampleFiles() {
 
 /// A spectral or cross-section model file, solved (std::logic_error for another type).
 inline SolvedSpectral solveSpectralFile(const std::string& path) {
-  std::optional<SolvedSpectral> solved = solveIfSpectral(loadModel(path), path);
-  if (!solved) throw std::logic_error(path + " is not a spectral example");
-  return std::move(*solved);
+  const AnyModel model = loadModel(path);
+  if (const auto* m = model.as<SpectralModel>()) return solve(*m, path);
+  if (const auto* m = model.as<CrossSectionModel>()) return solve(*m, path);
+  throw std::logic_error(path + " is not a spectral example");
 }
 
 }  // namespace pdesurf::testing

@@ -20,13 +20,12 @@ class SolvedBSplineSurface final
   using UnitSquarePatches::UnitSquarePatches;
 
   Mesh tessellate(const TessellateOptions& options) const override {
-    // The B-spline engine takes the samples per patch side.
-    return pdesurf::tessellate(value_, options.resolution);
+    return pdesurf::tessellate(value_, options);
   }
-  std::vector<PatchSamples> sample(std::uint32_t n) const override {
+  std::vector<PatchSamples> sample(const SampleOptions& options) const override {
     std::vector<PatchSamples> out;
     for (std::size_t k = 0; k < value_.pieces.size(); ++k) {
-      out.push_back(unitSamples(k, n, "patch"));
+      out.push_back(unitSamples(k, options.grid, "patch"));
       out.back().origin = value_.origin[k];  // the piece's origin in the blend
     }
     return out;
@@ -60,8 +59,7 @@ class BSplinePdeMethod final
     : public ShapeEditedMethod<
           OptionlessMethod<BSplinePdeModel, SolvedBSplinePde, SolvedBSplineSurface>> {
  public:
-  BSplinePdeMethod()
-      : ShapeEditedMethod("bspline-pde", parseBSplinePdeDocument, solveBSplineModel) {}
+  BSplinePdeMethod() : ShapeEditedMethod("bspline-pde", parseBSplinePdeDocument, pdesurf::solve) {}
 
   ModelReport report(const SolvedModel& solved) const override {
     return bsplineReport(solved.surface().get<SolvedBSplinePde>());

@@ -146,7 +146,7 @@ EditResult applyShapeEdit(const ShapeEditor& editor, const EditContext& context,
     base = context.groupStart;
   auto next =
       std::make_shared<const AnyModel>(shapeEdited(editor, *base->model, *base->solved, edit));
-  auto solvedNext = std::make_shared<const SolvedModel>(solveModel(next, context.source));
+  auto solvedNext = std::make_shared<const SolvedModel>(solve(next, context.source));
   checkReach(*base->model, *base->solved, *next, *solvedNext);
   return {{std::move(next), std::move(solvedNext), nullptr}};
 }

@@ -143,7 +143,7 @@ std::string ShapeEditsOf<SpectralModel>::dragAdvice(const SpectralModel& m) {
     return tessellate(solved, TessellateOptions{.resolution = kReachSamples}).positions;
   };
   try {
-    const SolvedModel base = solveModel(AnyModel(m), "probe");
+    const SolvedModel base = solve(AnyModel(m), "probe");
     const auto was = positions(base);
     Bounds box;
     for (std::size_t k = 0; k + 2 < was.size(); k += 3)
@@ -155,7 +155,7 @@ std::string ShapeEditsOf<SpectralModel>::dragAdvice(const SpectralModel& m) {
       if (m.conditions[i].derivative != 0 || !points) continue;
       SpectralModel probe = m;
       std::get<SampledCurve>(probe.conditions[i].curve).points[0] += d * Vec3(1, 2, 3).normalized();
-      const auto now = positions(solveModel(AnyModel(std::move(probe)), "probe"));
+      const auto now = positions(solve(AnyModel(std::move(probe)), "probe"));
       double moved = 0.0;
       for (std::size_t k = 0; k + 2 < was.size(); k += 3)
         moved = std::max(

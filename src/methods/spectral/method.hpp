@@ -28,10 +28,10 @@ class SolvedSpectralSurface final : public SolvedSurfaceOf<SolvedSpectral> {
     return value_.patchAt(patch).evaluate(u, v);
   }
   Mesh tessellate(const TessellateOptions& options) const override {
-    // The spectral engine takes the samples per patch side.
-    return pdesurf::tessellate(value_, options.resolution);
+    return pdesurf::tessellate(value_, options);
   }
-  std::vector<PatchSamples> sample(std::uint32_t n) const override {
+  std::vector<PatchSamples> sample(const SampleOptions& options) const override {
+    const std::uint32_t n = options.grid;
     std::vector<PatchSamples> out;
     for (std::size_t k = 0; k < value_.patchCount(); ++k) {
       const auto [u0, u1] = value_.range(k);
@@ -90,7 +90,7 @@ class SpectralMethod final
  public:
   using Base = ShapeEditedMethod<OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface>>;
   SpectralMethod(const char* type, typename Base::Parse parseFile)
-      : Base(type, parseFile, solveSpectralModel) {}
+      : Base(type, parseFile, pdesurf::solve) {}
 
   ModelReport report(const SolvedModel& solved) const override {
     return spectralReport(solved.surface().get<SolvedSpectral>());

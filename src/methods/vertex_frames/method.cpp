@@ -50,7 +50,7 @@ std::string frameInfo(const SolvedModel& solved, const VertexFrameModel& model,
          {{"min", {b.min.x(), b.min.y(), b.min.z()}}, {"max", {b.max.x(), b.max.y(), b.max.z()}}}},
         {"storage_bytes", storage},
         {"coincident_vertices", coincident},
-        {"solver", solved.options().solver == Solver::Local ? "local" : "global"},
+        {"solver", solved.options().vertexFrames.solver == Solver::Local ? "local" : "global"},
         {"notes", surface.notes}};
     return j.dump(2) + "\n";
   }
@@ -81,10 +81,10 @@ class SolvedFrames final
   Mesh tessellate(const TessellateOptions& options) const override {
     return pdesurf::tessellate(value_, options);
   }
-  std::vector<PatchSamples> sample(std::uint32_t n) const override {
+  std::vector<PatchSamples> sample(const SampleOptions& options) const override {
     std::vector<PatchSamples> out;
     for (std::size_t k = 0; k < value_.patches.size(); ++k)
-      out.push_back(unitSamples(k, n, "frame"));
+      out.push_back(unitSamples(k, options.grid, "frame"));
     return out;
   }
   NurbsModel toNurbs(const NurbsExportOptions& options) const override {
@@ -138,12 +138,13 @@ class VertexFramesMethod final : public MethodOf<VertexFrameModel> {
       const AnyModel& model, const std::string&, const SolveOptions& options,
       const std::shared_ptr<const FrameTopology>& topology) const override {
     const auto& frames = model.get<VertexFrameModel>();
-    return std::make_shared<const SolvedFrames>(topology ? pdesurf::solve(frames, topology, options)
-                                                         : pdesurf::solve(frames, options));
+    const VertexFrameSolveOptions& own = options.vertexFrames;
+    return std::make_shared<const SolvedFrames>(topology ? pdesurf::solve(frames, topology, own)
+                                                         : pdesurf::solve(frames, own));
   }
   void checkSolveOptions(const AnyModel& model, const SolveOptions& options) const override {
     const std::size_t n = model.get<VertexFrameModel>().frames.size();
-    if (options.seedFrame < n) return;
+    if (options.vertexFrames.seedFrame < n) return;
     throw InvalidArgument(fmt::format("out of range, the model has {} frame{} (indices 0 to {})", n,
                                       n == 1 ? "" : "s", n - 1));
   }
