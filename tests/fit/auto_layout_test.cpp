@@ -447,16 +447,17 @@ TEST(AutoLayout, TargetRmsSearchReturnsNoModelFoldedBeyondTheBound) {
 }
 
 /// Before the Jacobian barrier the default fit of 100 frames asked for folded 0.137 % of
-/// three_peaks (at 0.102 / 0.102 % RMS, 9.5°) and 1.59 % of the bear (0.276 / 0.087 %,
-/// 20.7°); with it 0.024 % (0.103 / 0.103 %, 8.0°) and 0.007 % (0.078 / 0.075 %, 7.7°)
+/// three_peaks (at 0.102 / 0.102 % RMS, 9.5°) and 1.89 % of the pig (0.264 / 0.172 %,
+/// 23.4°); with it 0.024 % (0.103 / 0.103 %, 8.0°) and 0.059 % (0.156 / 0.158 %, 12.5°)
 /// (docs/rebuild.md, "The Jacobian barrier"). Both now fold below the bound
 /// (kMaxFoldedArea), deviate less than these (degrees) ...
-constexpr double kBarrierDeviation[] = {9.0, 10.0};
-/// ... and reach at least this RMS both ways (of the diagonal; three_peaks' 0.102 % before).
-constexpr double kBarrierRms[] = {1.1e-3, 1.1e-3};
+constexpr double kBarrierDeviation[] = {9.0, 15.0};
+/// ... and reach at least this RMS both ways (of the diagonal; three_peaks' 0.102 % and the
+/// pig's 0.264 % before).
+constexpr double kBarrierRms[] = {1.1e-3, 2e-3};
 
-TEST(AutoLayout, TheJacobianBarrierUnfoldsThreePeaksAndTheBear) {
-  const char* names[] = {"three_peaks.off", "bear.off"};
+TEST(AutoLayout, TheJacobianBarrierUnfoldsThreePeaksAndThePig) {
+  const char* names[] = {"three_peaks.off", "pig.off"};
   for (int i = 0; i < 2; ++i) {
     SCOPED_TRACE(names[i]);
     const Mesh mesh = readMesh(testing::cgalData(names[i]));
