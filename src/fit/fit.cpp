@@ -74,6 +74,14 @@ constexpr double kCgReduction = 1e-4;
 /// sample would stall the fit (three_peaks.off: RMS 1.3 % instead of 0.16 %).
 constexpr double kFoldAllowance = 0.005;
 
+/// The Jacobian barrier (addFoldTerms): a sample's determinant (S_u × S_v)·m is held above
+/// this share of its frame's mean |S_u × S_v| ...
+constexpr double kBarrierFloor = 0.1;
+/// ... with this many times the fold-free term's weight λ (the folded area at 100 frames on
+/// three_peaks, lion-head, pig and bear: ratios 30 and 100 leave the bear 0.73–0.75 %
+/// folded, 1000 folds the lion 0.11 %, 300 folds under 0.06 % on all four; docs/rebuild.md).
+constexpr double kBarrierRatio = 300.0;
+
 /// Where a step would fold more samples of some frames over, those frames' vertices stay
 /// and the rest of the step is tried again, at most this many times a step.
 constexpr int kMaxFoldRetries = 4;
@@ -310,20 +318,23 @@ class Fitter {
   /// for a frame with no extent), and the surface's area A = Σ_k ∫∫ |S_u × S_v| du dv.
   struct Aspects {
     std::vector<double> rho;
+    std::vector<double> jacobian;  ///< per frame, the mean |S_u × S_v| over (u, v)
     double area = 0.0;
   };
   Aspects aspects(const Evaluation& e) const {
     const std::vector<SampleGrid::Point>& grid = grid_.points;
     const std::size_t nFrames = model_.frames.size(), perFrame = grid.size();
-    Aspects out{std::vector<double>(nFrames, 0.0)};
+    Aspects out{std::vector<double>(nFrames, 0.0), std::vector<double>(nFrames, 0.0)};
     for (std::size_t k = 0; k < nFrames; ++k) {
-      double uu = 0.0, vv = 0.0;
+      double uu = 0.0, vv = 0.0, area = 0.0;
       for (std::size_t s = 0; s < perFrame; ++s) {
         const std::size_t i = k * perFrame + s;
         uu += grid[s].weight * e.du[i].squaredNorm();
         vv += grid[s].weight * e.dv[i].squaredNorm();
-        out.area += grid[s].weight * cellArea() * e.du[i].cross(e.dv[i]).norm();
+        area += grid[s].weight * cellArea() * e.du[i].cross(e.dv[i]).norm();
       }
+      out.area += area;
+      out.jacobian[k] = area;  // the unit square's area is 1
       if (uu > 0.0 && vv > 0.0) out.rho[k] = std::sqrt(vv / uu);
     }
     return out;
@@ -411,19 +422,26 @@ class Fitter {
   /// S_u, S_v are affine in the unknowns and m, ρ_k are frozen at the current iterate, so
   /// the term is quadratic: weight λ diag² / A · Σ_k ∫∫ |r|² du dv, A the surface's area and
   /// ρ_k² = ∫∫|S_v|² / ∫∫|S_u|² over frame k. Added into the frames' normal blocks.
+  ///
+  /// The Jacobian barrier (kBarrierRatio λ; docs/rebuild.md, "The Jacobian barrier"): at the
+  /// samples where the determinant d = (S_u × S_v)·m is below τ J_k (J_k the frame's mean
+  /// |S_u × S_v|), the residual (τ J_k - d) / sqrt(J_k), d linearised at the current iterate
+  /// (δd = δS_u·(S_v × m) + δS_v·(m × S_u)), weighted β diag² / A as above: it pushes the
+  /// determinant of the samples about to fold, or folded, back up, and nothing else. Both
+  /// terms are off where λ = 0 (the distances alone).
   template <int Slots, class Blocks, class Unknown>
-  void addConformal(const Evaluation& current, Blocks& blocks, Eigen::VectorXd& rhs,
+  void addFoldTerms(const Evaluation& current, Blocks& blocks, Eigen::VectorXd& rhs,
                     const Unknown& unknown) const {
     using Weights = Eigen::Matrix<double, Slots, 1>;
     const std::vector<SampleGrid::Point>& grid = grid_.points;
     const std::size_t nFrames = model_.frames.size(), perFrame = grid.size();
     const Aspects aspect = aspects(current);
     if (!(aspect.area > 0.0)) return;
-    const double scale =
-        options_.conformalWeight * target_.diagonal * target_.diagonal * cellArea() / aspect.area;
+    const double unit = target_.diagonal * target_.diagonal * cellArea() / aspect.area;
+    const double conformal = options_.conformalWeight * unit;
+    const double barrier = kBarrierRatio * conformal;
     for (std::size_t k = 0; k < nFrames; ++k) {
-      const double rho = aspect.rho[k];
-      if (rho == 0.0) continue;
+      const double rho = aspect.rho[k], jacobian = aspect.jacobian[k];
       auto& block = blocks[k];
       for (std::size_t s = 0; s < perFrame; ++s) {
         const std::size_t i = k * perFrame + s;
@@ -440,20 +458,38 @@ class Fitter {
           b[10] = fu.s * fv.ds;
         }
         const Vec3 m = facing(current, k, i);
-        Eigen::Matrix3d n;  // n x = m × x
-        n << 0.0, -m.z(), m.y(), m.z(), 0.0, -m.x(), -m.y(), m.x(), 0.0;
-        const Eigen::Matrix3d tangential = Eigen::Matrix3d::Identity() - m * m.transpose();
-        const double c = scale * grid[s].weight;
-        // r = Σ_p G_p x_p + r0, G_p = b_p I - ρ a_p N: G_pᵀG_q = b_p b_q I + ρ(a_p b_q -
-        // b_p a_q) N + ρ² a_p a_q (I - m mᵀ), as Nᵀ = -N and NᵀN = I - m mᵀ.
-        for (int p = 0; p < Slots; ++p)
-          for (int q = 0; q < Slots; ++q)
-            block.template block<3, 3>(3 * p, 3 * q) +=
-                c * (b[p] * b[q] * Eigen::Matrix3d::Identity() +
-                     rho * (a[p] * b[q] - b[p] * a[q]) * n + rho * rho * a[p] * a[q] * tangential);
-        const Vec3 r0 = wv.offset - rho * m.cross(wu.offset);
-        for (int p = 0; p < Slots; ++p)
-          rhs.segment<3>(3 * unknown(k, p)) -= c * (b[p] * r0 + rho * a[p] * m.cross(r0));
+        if (conformal > 0.0 && rho > 0.0) {
+          Eigen::Matrix3d n;  // n x = m × x
+          n << 0.0, -m.z(), m.y(), m.z(), 0.0, -m.x(), -m.y(), m.x(), 0.0;
+          const Eigen::Matrix3d tangential = Eigen::Matrix3d::Identity() - m * m.transpose();
+          const double c = conformal * grid[s].weight;
+          // r = Σ_p G_p x_p + r0, G_p = b_p I - ρ a_p N: G_pᵀG_q = b_p b_q I + ρ(a_p b_q -
+          // b_p a_q) N + ρ² a_p a_q (I - m mᵀ), as Nᵀ = -N and NᵀN = I - m mᵀ.
+          for (int p = 0; p < Slots; ++p)
+            for (int q = 0; q < Slots; ++q)
+              block.template block<3, 3>(3 * p, 3 * q) +=
+                  c *
+                  (b[p] * b[q] * Eigen::Matrix3d::Identity() +
+                   rho * (a[p] * b[q] - b[p] * a[q]) * n + rho * rho * a[p] * a[q] * tangential);
+          const Vec3 r0 = wv.offset - rho * m.cross(wu.offset);
+          for (int p = 0; p < Slots; ++p)
+            rhs.segment<3>(3 * unknown(k, p)) -= c * (b[p] * r0 + rho * a[p] * m.cross(r0));
+        }
+        const Vec3 su = current.du[i], sv = current.dv[i];
+        const double det = su.cross(sv).dot(m), floor = kBarrierFloor * jacobian;
+        if (barrier > 0.0 && jacobian > 0.0 && det < floor) {
+          // d(x) ≈ Σ_p g_pᵀ x_p - d0 + offU·(S_v × m) + offV·(m × S_u), g_p = a_p (S_v × m)
+          // + b_p (m × S_u) (Σ_p g_pᵀ x0_p = 2 d0 - the offsets' part); the residual
+          // floor - d(x) = t - Σ_p g_pᵀ x_p.
+          const Vec3 gu = sv.cross(m), gv = m.cross(su);
+          const double t = floor + det - wu.offset.dot(gu) - wv.offset.dot(gv);
+          const double c = barrier * grid[s].weight / jacobian;
+          Eigen::Matrix<double, 3 * Slots, 1> g;
+          for (int p = 0; p < Slots; ++p) g.template segment<3>(3 * p) = a[p] * gu + b[p] * gv;
+          block.noalias() += c * g * g.transpose();
+          for (int p = 0; p < Slots; ++p)
+            rhs.segment<3>(3 * unknown(k, p)) += c * t * g.template segment<3>(3 * p);
+        }
       }
     }
   }
@@ -511,7 +547,7 @@ class Fitter {
       for (int i = 0; i < Slots; ++i)
         rhs.segment<3>(3 * unknown(p.frame, i)) += p.weight * a[i] * mt;
     }
-    if (options_.conformalWeight > 0.0) addConformal<Slots>(current, blocks, rhs, unknown);
+    if (options_.conformalWeight > 0.0) addFoldTerms<Slots>(current, blocks, rhs, unknown);
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(nFrames * 9 * Slots * Slots);
     std::vector<char> used(static_cast<std::size_t>(n), 0);

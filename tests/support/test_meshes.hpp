@@ -2,6 +2,7 @@
 // all closed ones oriented outwards (counter-clockwise seen from outside).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -109,6 +110,46 @@ inline Mesh boxMesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   b.quad(v[2], v[6], v[7], v[3]);  // y = hi
   b.quad(v[0], v[4], v[6], v[2]);  // x = lo
   b.quad(v[1], v[3], v[7], v[5]);  // x = hi
+  return b.mesh();
+}
+
+/// The cube [-1, 1]³ with its six faces bulging outwards by h (1 - s²)(1 - t²) (s, t the
+/// face's other two coordinates), n × n quads a face, closed and welded: its faces are
+/// smooth, its twelve edges creases where the faces' normals meet at 90° - 2 atan(2h (1 - t²))
+/// (t along the edge: 90° at the corners).
+inline Mesh pillowCubeMesh(int n, double h) {
+  MeshBuilder b;
+  std::vector<std::int64_t> index((n + 1) * (n + 1) * (n + 1), -1);
+  auto vertex = [&](std::array<int, 3> g) {
+    std::int64_t& v = index[(g[2] * (n + 1) + g[1]) * (n + 1) + g[0]];
+    if (v < 0) {
+      std::array<double, 3> p;
+      for (int a = 0; a < 3; ++a) p[a] = -1.0 + 2.0 * g[a] / n;
+      std::array<double, 3> q = p;
+      // On an edge or a corner every bulge is 0: another coordinate is ±1 there.
+      for (int a = 0; a < 3; ++a)
+        if (g[a] == 0 || g[a] == n)
+          q[a] += p[a] * h * (1 - p[(a + 1) % 3] * p[(a + 1) % 3]) *
+                  (1 - p[(a + 2) % 3] * p[(a + 2) % 3]);
+      v = b.vertex(q[0], q[1], q[2]);
+    }
+    return static_cast<std::uint32_t>(v);
+  };
+  for (int a = 0; a < 3; ++a)
+    for (int side : {0, n}) {
+      const int u = (a + 1) % 3, w = (a + 2) % 3;  // e_u × e_w = e_a
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          std::array<int, 3> g00{}, g10{}, g11{}, g01{};
+          for (auto* g : {&g00, &g10, &g11, &g01}) (*g)[a] = side;
+          g00[u] = i, g00[w] = j, g10[u] = i + 1, g10[w] = j;
+          g11[u] = i + 1, g11[w] = j + 1, g01[u] = i, g01[w] = j + 1;
+          if (side == n)  // counter-clockwise seen from outside
+            b.quad(vertex(g00), vertex(g10), vertex(g11), vertex(g01));
+          else
+            b.quad(vertex(g00), vertex(g01), vertex(g11), vertex(g10));
+        }
+    }
   return b.mesh();
 }
 
