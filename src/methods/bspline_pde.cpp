@@ -23,7 +23,7 @@ class SolvedBSplineSurface final
   std::vector<PatchSamples> sample(std::uint32_t n) const override {
     std::vector<PatchSamples> out;
     for (std::size_t k = 0; k < value_.pieces.size(); ++k) {
-      out.push_back(unitSamples(k, n, "patch"));
+      out.push_back(unitSamples(k, n));
       out.back().origin = value_.origin[k];  // the piece's origin in the blend
     }
     return out;
