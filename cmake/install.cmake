@@ -9,7 +9,9 @@
 include(CMakePackageConfigHelpers)
 set(PDESURF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/pdesurf)
 
-# Headers: the core's, and each module's where it is built.
+# Headers: the core's, and each module's where it is built. include/pdesurf/ holds the public
+# headers alone; the private ones live under src/ and are never installed (the test
+# public_headers: no installed header includes one).
 set(PDESURF_INSTALL_HEADERS)
 foreach(header IN LISTS PDESURF_PUBLIC_HEADERS)
   if(header IN_LIST PDESURF_CGAL_MODULE_HEADERS)

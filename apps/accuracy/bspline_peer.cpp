@@ -4,16 +4,28 @@
 #include <array>
 #include <cmath>
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
 #include <fmt/format.h>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
-#include "numerics/triangle_tree.hpp"
 #include "peers.hpp"
 
 namespace pdesurf {
 
 namespace {
+
+// The fine grid's triangles in CGAL's AABB tree, for the samples' closest points (the peer
+// uses CGAL itself, as polygon_peer.cpp does: the library's tree is private to it).
+using Cgal = CGAL::Simple_cartesian<double>;
+using GridTriangles = std::vector<Cgal::Triangle_3>;
+using GridTree = CGAL::AABB_tree<
+    CGAL::AABB_traits<Cgal, CGAL::AABB_triangle_primitive<Cgal, GridTriangles::const_iterator>>>;
+Cgal::Point_3 cgalPoint(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+Vec3 fromCgal(const Cgal::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
 /// The four cubic basis functions that are non-zero at t and the first control index they
 /// weigh (the others follow, mod n where the direction is closed).
@@ -170,7 +182,7 @@ std::vector<ParamSample> layoutSamples(const VertexFrameSurface& surface, const 
     double u, v;
   };
   std::vector<Corner> corners;
-  detail::Triangles triangles;
+  GridTriangles triangles;
   std::vector<std::array<std::uint32_t, 3>> cornerOf;
   for (std::uint32_t k = 0; k < surface.patches.size(); ++k) {
     const auto base = static_cast<std::uint32_t>(corners.size());
@@ -182,7 +194,7 @@ std::vector<ParamSample> layoutSamples(const VertexFrameSurface& surface, const 
         p.push_back(surface.patches[k].position(u, v));
       }
     auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-      triangles.emplace_back(detail::toPoint(p[a]), detail::toPoint(p[b]), detail::toPoint(p[c]));
+      triangles.emplace_back(cgalPoint(p[a]), cgalPoint(p[b]), cgalPoint(p[c]));
       cornerOf.push_back({base + a, base + b, base + c});
     };
     for (std::uint32_t j = 0; j + 1 < kPerSide; ++j)
@@ -192,12 +204,14 @@ std::vector<ParamSample> layoutSamples(const VertexFrameSurface& surface, const 
         add(a, a + 1 + kPerSide, a + kPerSide);
       }
   }
-  detail::Tree tree(triangles.begin(), triangles.end());
+  GridTree tree(triangles.begin(), triangles.end());
   tree.accelerate_distance_queries();
 
   // The truth's samples: triangle t cut into k_t² similar pieces, sampled at their centroids,
   // k_t = ceil(sqrt(samples · area_t / area)), each weighted by the area it stands for.
-  auto vertex = [&](std::uint32_t i) { return detail::meshVertex(truth, i); };
+  auto vertex = [&](std::uint32_t i) {
+    return Vec3(truth.positions[3 * i], truth.positions[3 * i + 1], truth.positions[3 * i + 2]);
+  };
   double area = 0.0;
   for (std::size_t t = 0; t < truth.triangleCount(); ++t) {
     const Vec3 a = vertex(truth.indices[3 * t]), b = vertex(truth.indices[3 * t + 1]),
@@ -227,12 +241,12 @@ std::vector<ParamSample> layoutSamples(const VertexFrameSurface& surface, const 
   // Gauss–Newton on the patch (kept inside it), mapped through the layout's grid.
   constexpr int kRefineSteps = 4;
   for (ParamSample& s : out) {
-    const auto [point, primitive] = tree.closest_point_and_primitive(detail::toPoint(s.p));
+    const auto [point, primitive] = tree.closest_point_and_primitive(cgalPoint(s.p));
     const auto t = static_cast<std::size_t>(primitive - triangles.cbegin());
-    const detail::Triangle& tri = triangles[t];
+    const Cgal::Triangle_3& tri = triangles[t];
     // Barycentric coordinates of the closest point in its triangle.
-    const Vec3 p0 = detail::toVec(tri[0]), e1 = detail::toVec(tri[1]) - p0,
-               e2 = detail::toVec(tri[2]) - p0, d = detail::toVec(point) - p0;
+    const Vec3 p0 = fromCgal(tri[0]), e1 = fromCgal(tri[1]) - p0, e2 = fromCgal(tri[2]) - p0,
+               d = fromCgal(point) - p0;
     const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
     const double det = d11 * d22 - d12 * d12;
     const double l1 = det > 0 ? (d22 * e1.dot(d) - d12 * e2.dot(d)) / det : 0.0;

@@ -15,6 +15,7 @@
 #include "distance_report.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
+#include "pdesurf/mesh_rebuild.hpp"
 #include "solve_args.hpp"
 
 namespace pdesurf::cli {
@@ -50,18 +51,6 @@ struct CompareCommand {
     return cmd;
   }
 
-  static Json oneWayJson(const OneWayDistance& d) {
-    return {{"samples", d.samples},
-            {"rms", d.rms},
-            {"rms_relative", d.rmsRelative},
-            {"mean", d.mean},
-            {"mean_relative", d.meanRelative},
-            {"max", d.max},
-            {"max_relative", d.maxRelative},
-            {"max_at", pointJson(d.maxAt)},
-            {"cover_radius", d.coverRadius}};
-  }
-
   int run() const {
     const BuiltModel built = buildModel(modelPath, resolution, solveArgs);
     auto t0 = Clock::now();
@@ -84,11 +73,11 @@ struct CompareCommand {
                 {"mesh", meshPath},
                 {"resolution", resolution},
                 {"diagonal", d.diagonal},
-                {"model_to_mesh", oneWayJson(d.aToB)},
-                {"mesh_to_model", oneWayJson(d.bToA)},
+                {"model_to_mesh", oneWayDistanceJson(d.aToB, DistanceFields::All)},
+                {"mesh_to_model", oneWayDistanceJson(d.bToA, DistanceFields::All)},
                 {"hausdorff", d.hausdorff},
                 {"hausdorff_relative", d.hausdorffRelative},
-                {"normals", normalsJson(normals)}};
+                {"normals", normalDeviationJson(normals)}};
       std::cout << j.dump(2) << '\n';
       return 0;
     }

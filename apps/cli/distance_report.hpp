@@ -37,9 +37,4 @@ inline void printNormals(const NormalDeviation& n) {
              n.reversed ? " (the model faces the other way, taken as it faces)" : "");
 }
 
-/// The same as JSON.
-inline Json normalsJson(const NormalDeviation& n) {
-  return {{"folded_area", n.foldedArea}, {"rms_degrees", n.rmsDegrees}, {"reversed", n.reversed}};
-}
-
 }  // namespace pdesurf::cli

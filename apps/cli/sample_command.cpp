@@ -9,6 +9,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "pdesurf/method.hpp"
 #include "pdesurf/model.hpp"
 #include "solve_args.hpp"
 
@@ -37,10 +38,13 @@ struct SampleCommand {
   int run() const {
     // Keys in the order written; doubles in their shortest round-trip form.
     nlohmann::ordered_json patches = nlohmann::ordered_json::array();
-    for (const PatchSamples& p : sample(loadSolved(modelPath, solveArgs), {grid})) {
+    const SolvedModel solved = loadSolved(modelPath, solveArgs);
+    // Each patch's index under what its method calls a patch ("frame", "patch").
+    const char* patchKey = solved.model().method().patchName();
+    for (const PatchSamples& p : sample(solved, {grid})) {
       nlohmann::ordered_json points = nlohmann::ordered_json::array();
       for (const Vec3& q : p.points) points.push_back({q.x(), q.y(), q.z()});
-      nlohmann::ordered_json patch = {{p.label, p.index}, {"grid", p.grid}};
+      nlohmann::ordered_json patch = {{patchKey, p.index}, {"grid", p.grid}};
       if (p.u) patch["u"] = {p.u->first, p.u->second};
       if (p.origin) patch["origin"] = {(*p.origin)[0], (*p.origin)[1]};
       patch["points"] = std::move(points);

@@ -11,32 +11,20 @@
 namespace pdesurf {
 
 namespace detail {
-/// Blocks of at least this many bytes are mapped on their own, rounded up to whole 2 MiB,
-/// 2 MiB-aligned and advised as transparent huge pages (MADV_HUGEPAGE: where THP is in
-/// "madvise" mode, as on Debian), so that the first write faults in 2 MiB at a time instead
-/// of 4 KiB: a 235 MB mesh takes about 120 faults instead of 58,000. Smaller blocks come from
-/// operator new.
-inline constexpr std::size_t kMappedBlockBytes = std::size_t{1} << 20;
-/// Freed mapped blocks are kept, faulted in, for the next allocation of about their size (a
-/// block is reused, cut to size, for a request of at least half its size), up to this many bytes in
-/// all, the oldest unmapped first: a page fault costs 1–15 µs on a VM and the kernel clears every
-/// fresh page, so a tessellation into reused pages runs without either.
-inline constexpr std::size_t kBlockCacheBytes = std::size_t{1} << 30;
+/// The allocation behind MeshAllocator (src/runtime/mesh_buffer.hpp: large blocks mapped as
+/// huge pages and kept for reuse once freed).
 void* allocateMeshBlock(std::size_t bytes);
 void freeMeshBlock(void* block, std::size_t bytes) noexcept;
-/// Unmaps every cached block; returns the bytes released.
-std::size_t releaseCachedMeshBlocks() noexcept;
-/// Bytes of freed blocks held for reuse.
-std::size_t cachedMeshBlockBytes() noexcept;
 }  // namespace detail
 
-/// Returns the memory of freed meshes kept for reuse (detail::kBlockCacheBytes at most) to
-/// the system; the bytes released. For a long-lived process after its large meshes are gone.
-inline std::size_t releaseMeshMemory() noexcept { return detail::releaseCachedMeshBlocks(); }
+/// Returns the memory of freed meshes kept for reuse (up to 1 GiB of large blocks) to the
+/// system; the bytes released. For a long-lived process after its large meshes are gone.
+std::size_t releaseMeshMemory() noexcept;
 
 /// The allocator of Mesh's buffers. resize() default-initialises (leaves floats and integers
 /// unwritten, as `new float[n]` does): whoever resizes a buffer writes every element, so a
-/// tessellation writes each byte of its output once. Large blocks as in kMappedBlockBytes.
+/// tessellation writes each byte of its output once. Blocks of 1 MiB or more are mapped as
+/// huge pages and kept for reuse once freed (releaseMeshMemory).
 template <class T>
 struct MeshAllocator {
   using value_type = T;

@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "pdesurf/auto_layout.hpp"
 #include "pdesurf/mesh.hpp"
 #include "pdesurf/mesh_distance.hpp"
@@ -201,5 +203,18 @@ RebuildResult rebuild(const Mesh& mesh, const RebuildOptions& options,
 /// keys in a fixed order; `mesh` is options.source, `output` the model file written or empty).
 std::string rebuildReportJson(const RebuildReport& report, const RebuildOptions& options,
                               const std::string& output);
+
+/// What a one-way distance's JSON holds (oneWayDistanceJson).
+enum class DistanceFields {
+  Figures,  ///< rms, mean and max, absolute and relative: the rebuild's report
+  All,      ///< the samples first, then the figures, where the max is and the cover radius
+};
+
+/// One direction of a MeshDistance as JSON, its keys in a fixed order ("rms",
+/// "rms_relative", ...): the writer of `pdesurf compare --json` (`All`) and of the rebuild's
+/// report (`Figures`).
+nlohmann::ordered_json oneWayDistanceJson(const OneWayDistance& d, DistanceFields fields);
+/// A NormalDeviation as JSON: "folded_area", "rms_degrees", "reversed".
+nlohmann::ordered_json normalDeviationJson(const NormalDeviation& n);
 
 }  // namespace pdesurf

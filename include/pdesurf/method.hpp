@@ -137,6 +137,8 @@ class SurfaceMethod {
   virtual const char* typeName() const = 0;
   /// The C++ type of its model values (what AnyModel holds).
   virtual std::type_index modelType() const = 0;
+  /// What its model files call a patch: "frame" for vertex frames; the default "patch".
+  virtual const char* patchName() const { return "patch"; }
 
   /// Parses and validates a model document whose "type" is typeName(); errors are ModelError
   /// naming `source` and the JSON path.

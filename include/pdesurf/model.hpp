@@ -85,17 +85,17 @@ const std::string& modelNameOf(const AnyModel& model);
 
 /// One patch sampled on a grid × grid lattice: points[j*grid+i] = S(u_i, v_j).
 struct PatchSamples {
-  const char* label = "patch";  ///< the JSON key of `index`: "frame" for vertex frames
-  std::size_t index = 0;
+  std::size_t index = 0;  ///< the patch (SurfaceMethod::patchName: what its method calls it)
   std::uint32_t grid = 0;
   std::optional<std::pair<double, double>> u;          ///< spectral: the patch's u range
   std::optional<std::array<std::uint32_t, 2>> origin;  ///< B-spline pieces: origin in the blend
   std::vector<Vec3> points;
 };
 
-/// What the studio's frame view draws of a model it does not edit: polylines of the
-/// defining curves (spectral position curves, B-spline control polygons) and spines.
-/// Empty for vertex frames (the page draws their frames from the model itself).
+/// A model's defining curves as polylines: spectral position curves and B-spline control
+/// polygons (`curves`), and spectral patches' spines (`spines`). Empty for vertex frames,
+/// whose frames are the model itself. (The studio draws them over a model it does not edit,
+/// apps/studio/document.cpp.)
 struct ModelOverlay {
   std::vector<std::vector<Vec3>> curves, spines;
 };
@@ -151,7 +151,7 @@ class SolvedSurface {
   /// The largest distance between two patches where they should meet (absolute), 0 for a
   /// single patch: the studio's X-C0-Gap.
   virtual double largestC0Gap() const = 0;
-  /// The defining curves the studio's frame view draws (the default: none).
+  /// The model's defining curves as polylines (ModelOverlay; the default: none).
   virtual ModelOverlay overlay() const { return {}; }
   /// The solver's notes (vertex frames: strips pinned, …); the default: none.
   virtual const std::vector<std::string>& notes() const;
@@ -269,7 +269,7 @@ double largestC0Gap(const SolvedModel& solved);
 /// The patches as NURBS faces (docs/nurbs-export.md).
 NurbsModel toNurbs(const SolvedModel& solved, const NurbsExportOptions& options = {});
 
-/// The defining curves the studio's frame view draws (ModelOverlay).
+/// The model's defining curves as polylines (ModelOverlay).
 ModelOverlay overlay(const SolvedModel& solved);
 
 /// `name` when it is not empty, else the file name of `path`: how output names a model.

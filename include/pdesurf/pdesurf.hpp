@@ -14,7 +14,6 @@
 #include "pdesurf/bspline_pde.hpp"
 #include "pdesurf/bspline_pde_model.hpp"
 #include "pdesurf/coons.hpp"
-#include "pdesurf/frame_lattice.hpp"
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/nurbs.hpp"
 #include "pdesurf/section_rebuild.hpp"

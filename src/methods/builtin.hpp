@@ -84,15 +84,10 @@ class UnitSquarePatches : public SolvedSurfaceOf<T> {
 
  protected:
   const auto& patches() const { return this->value_.*Patches; }
-  /// Patch k at (i/(n−1), j/(n−1)), under the JSON key `label`.
-  PatchSamples unitSamples(std::size_t k, std::uint32_t n, const char* label) const {
+  /// Patch k at (i/(n−1), j/(n−1)).
+  PatchSamples unitSamples(std::size_t k, std::uint32_t n) const {
     const auto unit = [n](std::uint32_t i) { return static_cast<double>(i) / (n - 1); };
-    return {label,
-            k,
-            n,
-            std::nullopt,
-            std::nullopt,
-            sampleGrid(n, [&](std::uint32_t i, std::uint32_t j) {
+    return {k, n, std::nullopt, std::nullopt, sampleGrid(n, [&](std::uint32_t i, std::uint32_t j) {
               return patches()[k].position(unit(i), unit(j));
             })};
   }

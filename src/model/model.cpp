@@ -14,7 +14,6 @@
 
 #include "pdesurf/error.hpp"
 #include "pdesurf/method.hpp"
-#include "pdesurf/model_error.hpp"
 
 namespace pdesurf {
 
@@ -137,7 +136,7 @@ std::vector<PatchSamples> SolvedSurface::sample(const SampleOptions& options) co
   std::vector<PatchSamples> out;
   for (std::size_t k = 0; k < patchCount(); ++k) {
     const PatchDomain d = domain(k);
-    PatchSamples samples{"patch", k, n, std::nullopt, std::nullopt, {}};
+    PatchSamples samples{k, n, std::nullopt, std::nullopt, {}};
     for (std::uint32_t j = 0; j < n; ++j)
       for (std::uint32_t i = 0; i < n; ++i)
         samples.points.push_back(evaluate(k,

@@ -1,5 +1,5 @@
 // Mesh buffers: large blocks mapped on their own, advised as transparent huge pages, and
-// kept for reuse once freed (include/pdesurf/mesh.hpp says why).
+// kept for reuse once freed (src/runtime/mesh_buffer.hpp says why).
 #include <algorithm>
 #include <cstdint>
 #include <mutex>
@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "pdesurf/mesh.hpp"
+#include "runtime/mesh_buffer.hpp"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -151,3 +151,9 @@ std::size_t cachedMeshBlockBytes() noexcept {
 }
 
 }  // namespace pdesurf::detail
+
+namespace pdesurf {
+
+std::size_t releaseMeshMemory() noexcept { return detail::releaseCachedMeshBlocks(); }
+
+}  // namespace pdesurf

@@ -12,7 +12,7 @@
 
 #include "io/json_reader.hpp"
 #include "io/middle_mismatch.hpp"
-#include "pdesurf/frame_lattice.hpp"
+#include "numerics/frame_lattice.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "pdesurf/method.hpp"
 #include "pdesurf/model.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
@@ -55,6 +56,13 @@ TEST(Model, EveryExampleSolvesTessellatesAndSamplesThroughOneType) {
     // The NURBS faces cover every patch: one face per patch at least.
     EXPECT_GE(toNurbs(solved).faces.size(), solved.frames() ? solved.frames()->patches.size() : 1);
   }
+}
+
+TEST(Model, EachMethodNamesItsPatches) {
+  // What `pdesurf sample` writes a patch's index under: vertex frames' patches are frames.
+  EXPECT_STREQ(loadAndSolve(example("mug.json")).model().method().patchName(), "frame");
+  for (const char* file : {"shell.json", "vase-sections.json", "bspline-blend.json"})
+    EXPECT_STREQ(loadAndSolve(example(file)).model().method().patchName(), "patch") << file;
 }
 
 TEST(Model, OverlayDrawsControlPolygonsOfBSplinesAndNothingForFrames) {

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/mesh_io.hpp"
@@ -183,6 +186,42 @@ TEST(Rebuild, CrossSectionsAreTheSectionRebuildMeasuredAgainstItsPart) {
   EXPECT_TRUE(contains(json, "\"model_storage_bytes\": " + std::to_string(r.report.storageBytes)))
       << json;
   EXPECT_FALSE(contains(json, "loft"));
+}
+
+/// The keys of a JSON object, in their order.
+std::vector<std::string> keysOf(const nlohmann::ordered_json& j) {
+  std::vector<std::string> keys;
+  for (const auto& item : j.items()) keys.push_back(item.key());
+  return keys;
+}
+
+TEST(RebuildReportJson, DistancesAndNormalsAreWrittenByOneWriterInTheirOrder) {
+  OneWayDistance d;
+  d.samples = 7;
+  d.rms = 0.5;
+  d.max = 2.0;
+  d.maxAt = Vec3(1, 2, 3);
+  d.coverRadius = 0.25;
+  // The rebuild's report: the six figures alone.
+  const nlohmann::ordered_json figures = oneWayDistanceJson(d, DistanceFields::Figures);
+  EXPECT_EQ(keysOf(figures), (std::vector<std::string>{"rms", "rms_relative", "mean",
+                                                       "mean_relative", "max", "max_relative"}));
+  EXPECT_EQ(figures["rms"], 0.5);
+  // compare --json: the samples first, where the max is and the cover radius last.
+  const nlohmann::ordered_json all = oneWayDistanceJson(d, DistanceFields::All);
+  EXPECT_EQ(keysOf(all),
+            (std::vector<std::string>{"samples", "rms", "rms_relative", "mean", "mean_relative",
+                                      "max", "max_relative", "max_at", "cover_radius"}));
+  EXPECT_EQ(all["samples"], 7);
+  EXPECT_EQ(all["max_at"], nlohmann::ordered_json({1.0, 2.0, 3.0}));
+  EXPECT_EQ(all["cover_radius"], 0.25);
+  NormalDeviation n;
+  n.foldedArea = 0.125;
+  n.reversed = true;
+  const nlohmann::ordered_json normals = normalDeviationJson(n);
+  EXPECT_EQ(keysOf(normals), (std::vector<std::string>{"folded_area", "rms_degrees", "reversed"}));
+  EXPECT_EQ(normals["folded_area"], 0.125);
+  EXPECT_EQ(normals["reversed"], true);
 }
 
 TEST(Rebuild, ABadMeshThrowsTheLayoutsError) {

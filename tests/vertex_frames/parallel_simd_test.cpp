@@ -15,6 +15,7 @@
 #include "pdesurf/mesh_slice.hpp"
 #include "pdesurf/nurbs.hpp"
 #include "pdesurf/vertex_frames.hpp"
+#include "runtime/mesh_buffer.hpp"
 #include "runtime/simd.hpp"
 #include "support/models.hpp"
 

@@ -25,7 +25,7 @@ class SolvedBSplineSurface final
   std::vector<PatchSamples> sample(const SampleOptions& options) const override {
     std::vector<PatchSamples> out;
     for (std::size_t k = 0; k < value_.pieces.size(); ++k) {
-      out.push_back(unitSamples(k, options.grid, "patch"));
+      out.push_back(unitSamples(k, options.grid));
       out.back().origin = value_.origin[k];  // the piece's origin in the blend
     }
     return out;

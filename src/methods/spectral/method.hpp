@@ -35,7 +35,7 @@ class SolvedSpectralSurface final : public SolvedSurfaceOf<SolvedSpectral> {
     std::vector<PatchSamples> out;
     for (std::size_t k = 0; k < value_.patchCount(); ++k) {
       const auto [u0, u1] = value_.range(k);
-      out.push_back({"patch", k, n, std::pair{u0, u1}, std::nullopt,
+      out.push_back({k, n, std::pair{u0, u1}, std::nullopt,
                      sampleGrid(n, [&](std::uint32_t i, std::uint32_t j) {
                        // As the CLI always sampled (same rounding).
                        return value_.patchAt(k).position(

@@ -84,7 +84,7 @@ class SolvedFrames final
   std::vector<PatchSamples> sample(const SampleOptions& options) const override {
     std::vector<PatchSamples> out;
     for (std::size_t k = 0; k < value_.patches.size(); ++k)
-      out.push_back(unitSamples(k, options.grid, "frame"));
+      out.push_back(unitSamples(k, options.grid));
     return out;
   }
   NurbsModel toNurbs(const NurbsExportOptions& options) const override {
@@ -128,6 +128,7 @@ VertexFrameModel withPartsSet(VertexFrameModel next, const Edit& edit) {
 class VertexFramesMethod final : public MethodOf<VertexFrameModel> {
  public:
   const char* typeName() const override { return "vertex-frames"; }
+  const char* patchName() const override { return "frame"; }
   AnyModel parse(const nlohmann::json& document, const std::string& source) const override {
     return parseVertexFrameDocument(document, Reader(source));
   }

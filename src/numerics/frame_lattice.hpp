@@ -1,5 +1,7 @@
 // The frame on a 3 × 3 block of a vertex lattice: the grid and tube layouts of rebuild
-// (src/fit) and the studio's new models (src/session/structure.cpp) lay frames out with it.
+// (src/fit) and new models (src/session/structure.cpp) lay frames out with it. Private to the
+// library; here, beside the kernels every layer builds with, because those two users sit in
+// different layers (engines and io). Its users see vertex_frames.hpp (engines and above).
 #pragma once
 
 #include <cstdint>
