@@ -60,9 +60,9 @@ TEST(Model, EveryExampleSolvesTessellatesAndSamplesThroughOneType) {
 
 TEST(Model, EachMethodNamesItsPatches) {
   // What `pdesurf sample` writes a patch's index under: vertex frames' patches are frames.
-  EXPECT_STREQ(loadAndSolve(example("mug.json")).model().method().patchName(), "frame");
+  EXPECT_STREQ(loadModel(example("mug.json")).method().patchName(), "frame");
   for (const char* file : {"shell.json", "vase-sections.json", "bspline-blend.json"})
-    EXPECT_STREQ(loadAndSolve(example(file)).model().method().patchName(), "patch") << file;
+    EXPECT_STREQ(loadModel(example(file)).method().patchName(), "patch") << file;
 }
 
 TEST(Model, OverlayDrawsControlPolygonsOfBSplinesAndNothingForFrames) {
