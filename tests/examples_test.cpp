@@ -168,7 +168,7 @@ TEST_P(BSplineExample, SolvesThePdeAndTessellatesCleanly) {
     for (std::uint32_t i = 0; i <= model.net.nu; ++i)
       for (std::uint32_t j = 0; j <= model.net.nv; ++j)
         if (model.net.given(i, j)) EXPECT_EQ(solved.pieces[0].net()(i, j), model.net(i, j));
-  const Mesh mesh = tessellate(solved, 17);
+  const Mesh mesh = tessellate(solved, {17});
   ASSERT_GT(mesh.triangleCount(), 0u);
   const auto stats = testing::edgeStats(mesh);
   EXPECT_EQ(stats.inconsistentlyOrientedEdges, 0u);

@@ -199,7 +199,7 @@ TEST(ToyMethod, SolvesTessellatesSamplesAndWritesBack) {
 
   // Samples: the bilinear formula at i/(n−1), j/(n−1).
   constexpr std::uint32_t kGrid = 5;
-  const std::vector<PatchSamples> samples = sample(solved, kGrid);
+  const std::vector<PatchSamples> samples = sample(solved, {kGrid});
   ASSERT_EQ(samples.size(), 2u);
   for (std::size_t k = 0; k < 2; ++k) {
     ASSERT_EQ(samples[k].points.size(), kGrid * kGrid);
