@@ -81,6 +81,12 @@ class UnitSquarePatches : public SolvedSurfaceOf<T> {
   SurfacePoint evaluate(std::size_t patch, double u, double v) const override {
     return patches()[patch].evaluate(u, v);
   }
+  /// Each patch on a grid × grid lattice of its unit square.
+  std::vector<PatchSamples> sample(const SampleOptions& options) const override {
+    std::vector<PatchSamples> out;
+    for (std::size_t k = 0; k < patches().size(); ++k) out.push_back(unitSamples(k, options.grid));
+    return out;
+  }
 
  protected:
   const auto& patches() const { return this->value_.*Patches; }

@@ -23,11 +23,9 @@ class SolvedBSplineSurface final
     return pdesurf::tessellate(value_, options);
   }
   std::vector<PatchSamples> sample(const SampleOptions& options) const override {
-    std::vector<PatchSamples> out;
-    for (std::size_t k = 0; k < value_.pieces.size(); ++k) {
-      out.push_back(unitSamples(k, options.grid));
-      out.back().origin = value_.origin[k];  // the piece's origin in the blend
-    }
+    std::vector<PatchSamples> out = UnitSquarePatches::sample(options);
+    for (std::size_t k = 0; k < out.size(); ++k)
+      out[k].origin = value_.origin[k];  // the piece's origin in the blend
     return out;
   }
   NurbsModel toNurbs(const NurbsExportOptions& options) const override {

@@ -81,12 +81,6 @@ class SolvedFrames final
   Mesh tessellate(const TessellateOptions& options) const override {
     return pdesurf::tessellate(value_, options);
   }
-  std::vector<PatchSamples> sample(const SampleOptions& options) const override {
-    std::vector<PatchSamples> out;
-    for (std::size_t k = 0; k < value_.patches.size(); ++k)
-      out.push_back(unitSamples(k, options.grid));
-    return out;
-  }
   NurbsModel toNurbs(const NurbsExportOptions& options) const override {
     return pdesurf::toNurbs(value_, options);
   }
