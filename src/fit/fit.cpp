@@ -73,6 +73,10 @@ constexpr double kCgReduction = 1e-4;
 /// a triangle that faces away, which is no fold of the surface, and holding every such
 /// sample would stall the fit (three_peaks.off: RMS 1.3 % instead of 0.16 %).
 constexpr double kFoldAllowance = 0.005;
+/// A frame whose samples weigh less than this share of the mean frame's is taken as weighing
+/// nothing (a frame shrunk to a point): its vertices that no other frame weighs are anchored
+/// where they are (the least squares, below).
+constexpr double kUnweightedFrame = 1e-9;
 
 /// The Jacobian barrier (addFoldTerms): a sample's determinant (S_u × S_v)·m is held above
 /// this share of its frame's mean |S_u × S_v| ...
@@ -578,6 +582,31 @@ class Fitter {
     }
     Eigen::SparseMatrix<double> k(size, size);
     k.setFromTriplets(triplets.begin(), triplets.end());
+    // Vertices that no sample weighs stay where they are: a frame the fit shrank to a point
+    // has no area, so its samples weigh nothing, and the smoothness term does not see it move
+    // whole, so the system is singular in its vertices (CGAL's boeing.off at 60 frames: one
+    // such frame flew 2,000 units off, 74 diagonals). Each vertex used only by frames whose
+    // samples weigh less than kUnweightedFrame of the mean frame's gets an anchor μ |y - y0|²
+    // with μ the mean diagonal of the vertices' equations; the others are not touched.
+    {
+      std::vector<double> frameWeight(nFrames, 0.0);
+      for (const Pair& p : pairs) frameWeight[p.frame] += p.weight;
+      double meanWeight = 0.0;
+      for (double w : frameWeight) meanWeight += w / static_cast<double>(nFrames);
+      std::vector<char> weighed(static_cast<std::size_t>(n), 0);
+      for (std::size_t f = 0; f < nFrames; ++f)
+        if (frameWeight[f] > kUnweightedFrame * meanWeight)
+          for (std::uint32_t v : model_.frames[f].vertices) weighed[v] = 1;
+      double trace = 0.0;
+      for (Eigen::Index j = 0; j < 3 * n; ++j) trace += k.coeff(j, j);
+      const double anchor = trace / static_cast<double>(3 * n);
+      for (Eigen::Index v = 0; v < n; ++v)
+        if (used[v] && !weighed[v])
+          for (Eigen::Index c = 3 * v; c < 3 * v + 3; ++c) {
+            k.coeffRef(c, c) += anchor;
+            rhs[c] += anchor * y0[c];
+          }
+    }
     const Eigen::SparseMatrix<double> local = k.topLeftCorner(free, free);
     if (local.nonZeros() != analysedNonZeros_) {
       factor_.analyzePattern(local);
