@@ -12,6 +12,7 @@
 #include "cli_common.hpp"
 #include "distance_report.hpp"
 #include "pdesurf/atomic_file.hpp"
+#include "pdesurf/auto_layout.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/occt_loft.hpp"
@@ -319,6 +320,15 @@ int RebuildCommand::runVertexFrames(const RebuildOptions& o) const {
   printNormals(report.normals);
   fmt::print("storage        {} bytes (numbers to six significant digits)\n", report.storageBytes);
   if (report.automatic) printStorageAgainstMesh(report);
+  // A model that folds is what a user rejects whatever its RMS: say so, and what helps.
+  if (report.normals.foldedArea > kMaxFoldedArea)
+    fmt::print(stderr,
+               "pdesurf: warning: {:.3g}% of the model's area is folded (its normal points "
+               "against the mesh's), more than {:.3g}%: the layout is too coarse for this mesh; "
+               "more frames ({}) usually unfold it\n",
+               100.0 * report.normals.foldedArea, 100.0 * kMaxFoldedArea,
+               report.automatic ? "a larger --frames, or --target-rms"
+                                : "a finer --grid, --tube or --layout");
   return 0;
 }
 
