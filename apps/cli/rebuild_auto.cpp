@@ -9,6 +9,9 @@ namespace pdesurf::cli {
 
 namespace {
 
+/// A layout this many times larger than the frames asked for was held by its kept edges.
+constexpr std::size_t kHeldLayoutFactor = 2;
+
 std::string madeLine(const AutoLayoutReport& a) {
   return fmt::format(
       "{} from {} of the mesh simplified by Garland–Heckbert quadrics, {} ({} in one model), "
@@ -54,6 +57,13 @@ void AutoLayoutArgs::apply(RebuildOptions& options) const {
 void printAutomaticLayout(const AutoLayoutReport& layout) {
   fmt::print("automatic layout (about {} asked for): {}\n", count(layout.requested, "frame"),
              madeLine(layout));
+  // The simplification stops where it would move a kept edge (a crease, a boundary) or
+  // merge a component away: say why the layout is larger than asked, and what lets it go.
+  if (layout.frames > kHeldLayoutFactor * layout.requested && layout.creaseEdges > 0)
+    fmt::print(
+        "  (the kept edges and the components hold the layout at {}, more than {} times the {} "
+        "asked for; a larger --crease-angle lets creases go, 180 keeps the boundaries alone)\n",
+        count(layout.frames, "frame"), kHeldLayoutFactor, layout.requested);
 }
 
 void printTrial(const RebuildOptions& options, std::uint32_t requested, const AutoFit& f) {

@@ -73,6 +73,20 @@ TEST_F(CliRebuildAuto, AModelThatFoldsWarnsWithTheFoldedShareAndTheRemedy) {
   EXPECT_FALSE(contains(t.err, "warning")) << t.err;
 }
 
+/// CGAL's cube.off (12 triangles, 12 creases of 90°): no simplification keeps the creases, so
+/// 6 frames asked for make 24, and the output says why and what lets the creases go.
+TEST_F(CliRebuildAuto, ALayoutHeldAboveTheCountByCreasesSaysWhy) {
+  const std::string cube = testing::cgalData("cube.off");
+  const CliRun r = run("rebuild " + cube + " --as vertex-frames --frames 6 -o m.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "hold the layout at 24 frames, more than 2 times the 6 asked for"))
+      << r.out;
+  EXPECT_TRUE(contains(r.out, "--crease-angle")) << r.out;
+  const CliRun t = run("rebuild torus.obj --as vertex-frames --frames 60 --quads split -o t.json");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_FALSE(contains(t.out, "hold the layout")) << t.out;
+}
+
 TEST_F(CliRebuildAuto, TargetRmsSaysItReachedItAndWithHowManyFrames) {
   const CliRun r = run("rebuild torus.obj --as vertex-frames --target-rms 0.4% -o m.json");
   ASSERT_EQ(r.code, 0) << r.err;
