@@ -65,6 +65,7 @@ void Document::replaceSession(AnyModel model, const std::string& source) {
   session_ = std::make_unique<ModelSession>(std::move(model), source);
   base_ = next;
   opened_ = true;
+  shapeParts_ = nullptr;  // another model: its parts are computed when asked for
 }
 
 void Document::open(const fs::path& path, const std::string& source) {
@@ -100,13 +101,10 @@ std::string Document::modelText() const {
   return text == openedModel_ ? openedText_ : text;
 }
 
-Json Document::viewCurves() {
-  const ModelOverlay view = overlay(session_->solved());
-  return {{"curves", polylines(view.curves)}, {"spines", polylines(view.spines)}};
-}
+namespace {
 
-Json Document::handles() {
-  const ModelHandles handles = session_->model().method().handles(session_->solved());
+/// SurfaceMethod::handles as GET /api/model's "handles".
+Json handlesJson(const ModelHandles& handles) {
   const auto ref = [](const CurveRef& r) { return r.name.empty() ? Json(r.index) : Json(r.name); };
   const auto xyz = [](const Vec3& p) { return Json::array({p.x(), p.y(), p.z()}); };
   Json points = Json::array();
@@ -139,6 +137,35 @@ Json Document::handles() {
                       {"vectors", c.vectors}});
   return {
       {"points", std::move(points)}, {"curves", std::move(curves)}, {"tangentDraw", kTangentDraw}};
+}
+
+/// SurfaceMethod::settings as GET /api/model's "settings".
+Json settingsJson(const ModelSettings& settings) {
+  Json out = {{"edits", settings.edits}, {"overlay", settings.overlay}};
+  if (const auto& op = settings.op) {
+    // set-operator's fields, as that edit names them (edit_io.hpp).
+    Json j = {{"a", op->a}, {"modes", op->modes}, {"remainder", op->remainder}};
+    if (op->kind) j["operator"] = *op->kind == OperatorKind::Fu ? "fu" : "ugail";
+    if (op->power) j["N"] = *op->power;
+    if (op->method) j["method"] = chainMethodName(*op->method);
+    out["operator"] = std::move(j);
+  }
+  return out;
+}
+
+}  // namespace
+
+const Json& Document::shapeParts() {
+  if (shapeRevision_ == revision() && !shapeParts_.is_null()) return shapeParts_;
+  const AnyModel& model = session_->model();
+  const SolvedModel& solved = session_->solved();
+  const ModelOverlay view = overlay(solved);
+  shapeParts_ = {{"view", {{"curves", polylines(view.curves)}, {"spines", polylines(view.spines)}}},
+                 {"handles", handlesJson(model.method().handles(solved))},
+                 {"settings", settingsJson(model.method().settings(model))},
+                 {"dragAdvice", dragAdvice(model)}};
+  shapeRevision_ = revision();
+  return shapeParts_;
 }
 
 void Document::autosave() {

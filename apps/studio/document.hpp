@@ -58,13 +58,13 @@ class Document {
   /// serializeModel writes it. A model with editable parts is always written by
   /// serializeModel.
   std::string modelText() const;
-  /// What the frame view draws for a model without editable parts (overlay()): polylines as
-  /// JSON.
-  nlohmann::json viewCurves();
-  /// The handles and curves its method exposes to drag (SurfaceMethod::handles) as JSON:
-  /// {"points": [{"kind", its reference, "p"}...], "curves": [{"ref", "label", "centre",
-  /// "vectors"}...], "tangentDraw"} (apps/studio/README.md).
-  nlohmann::json handles();
+  /// What GET /api/model serves of a model without editable parts besides the model itself
+  /// (apps/studio/README.md): "view" (its overlay: {"curves", "spines"} as polylines),
+  /// "handles" (SurfaceMethod::handles: {"points": [{"kind", its reference, "p"}...],
+  /// "curves": [{"ref", "label", "centre", "vectors"}...], "tangentDraw"}), "settings"
+  /// (SurfaceMethod::settings: {"edits", "overlay", "operator"?}) and "dragAdvice". Computed
+  /// once per revision (every edit, undo, redo and load is a new one).
+  const nlohmann::json& shapeParts();
 
  private:
   void replaceSession(AnyModel model, const std::string& source);
@@ -81,6 +81,8 @@ class Document {
   std::string openedText_;   ///< the model's file as opened
   std::string openedModel_;  ///< serializeModel of the model as opened
   Journal journal_;
+  nlohmann::json shapeParts_;  ///< shapeParts() of revision shapeRevision_ (null: none)
+  std::uint64_t shapeRevision_ = 0;
 };
 
 }  // namespace pdesurf::studio

@@ -18,13 +18,11 @@ void addModelRoutes(const Studio& studio) {
   studio.server.Get("/api/model",
                     studio.guarded([&doc](const httplib::Request&, httplib::Response& res) {
                       Json out = doc.openedStatus();
+                      out["type"] = modelTypeName(doc.session().model());
                       out["hasEditableParts"] = doc.session().hasEditableParts();
                       out["model"] = Json::parse(doc.modelText());
-                      if (!doc.session().hasEditableParts()) {
-                        out["view"] = doc.viewCurves();
-                        out["handles"] = doc.handles();
-                        out["dragAdvice"] = dragAdvice(doc.session().model());
-                      }
+                      // What the page draws and shows of it: no model file read there.
+                      if (!doc.session().hasEditableParts()) out.update(doc.shapeParts());
                       sendJson(res, out);
                     }));
 

@@ -108,6 +108,14 @@ test.describe('a spectral model of Fourier curves (the membrane)', () => {
     const original = fileText(studio);
     await openStudio(page, studio);
     await expect(page.getByTestId('operator-tools')).toBeVisible();
+    // The panel shows the file's operator (as the server's settings say it).
+    const file = JSON.parse(original);
+    await expect(page.getByTestId('operator-kind')).toHaveValue(file.operator);
+    await expect(page.getByTestId('operator-n')).toHaveValue(String(file.N));
+    await expect(page.getByTestId('operator-a')).toHaveValue(String(file.a));
+    await expect(page.getByTestId('operator-modes')).toHaveValue(String(file.modes));
+    await expect(page.getByTestId('operator-remainder')).toBeChecked({ checked: file.remainder });
+    await expect(page.getByTestId('section-tools')).toBeHidden();
     await page.getByTestId('operator-a').fill('2.5');
     await page.getByTestId('operator-a').press('Enter');
     await expect.poll(async () => (await studio.state()).model.a).toBe(2.5);
@@ -118,6 +126,7 @@ test.describe('a spectral model of Fourier curves (the membrane)', () => {
     await page.getByTestId('operator-n').press('Enter');
     await expect(page.getByTestId('error')).toContainText('10');
     expect((await studio.state()).model.N).toBe(4);
+    await expect(page.getByTestId('operator-n')).toHaveValue('4'); // the model's again
     // The slider: a gesture of several edits, one undo step.
     const slider = page.getByTestId('operator-a-slider');
     const box = (await slider.boundingBox())!;
@@ -142,6 +151,11 @@ test.describe('a cross-section chain (the vase)', () => {
     const original = fileText(studio);
     const count = JSON.parse(original).curves.length;
     await openStudio(page, studio);
+    // A chain's operator: a, modes and the remainder; no kind or N.
+    await expect(page.getByTestId('section-tools')).toBeVisible();
+    await expect(page.getByTestId('operator-a')).toHaveValue(String(JSON.parse(original).a));
+    await expect(page.getByTestId('operator-n-label')).toBeHidden();
+    await expect(page.getByTestId('operator-kind-label')).toBeHidden();
     // A point of the top section dragged: the chain passes through it.
     const h = await dragHandle(page, (x) => x.kind === 'curve' && x.curve === count - 1, 25, -15);
     await meshUpToDate(page);

@@ -55,6 +55,7 @@ GroupedEdit parseFrameEdit(std::string_view json, const VertexFrameModel& model)
 ///   {"op": "set-operator", "operator": "ugail" | "fu", "N": 3, "a": 2, "modes": 6,
 ///    "remainder": true}  (any of them; chains: a, modes, remainder)
 ///   {"op": "set-spine", "spine": [{"u": [...], "moved": [[x, y, z], ...]}]}  (the file's field)
+///   {"op": "move-spine-point", "index": 4, "position": [x, y, z]}  (a spine handle, absolute)
 ///   {"op": "add-section", "index": 2, "curve": {...}}  (curve optional between two sections)
 ///   {"op": "remove-section", "index": 2}
 ///   {"op": "move-control-points", "points": [[i, j], ...], "positions": [...]}  (net form)

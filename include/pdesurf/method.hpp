@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -18,6 +19,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "pdesurf/model.hpp"
+#include "pdesurf/spectral.hpp"  // OperatorKind, ChainMethod
 #include "pdesurf/transform.hpp"
 
 namespace pdesurf {
@@ -127,6 +129,30 @@ struct ModelHandles {
   std::vector<HandleCurve> curves;
 };
 
+/// What a model offers to set whole (SurfaceMethod::settings): the edits its method takes,
+/// its operator's values and what the studio's frame view draws of it. The studio's panels
+/// show these, so its page reads no model file.
+struct ModelSettings {
+  /// The ops of the edits parseEdit takes of the model (apps/studio/README.md), in the order
+  /// the method lists them.
+  std::vector<std::string> edits;
+  /// The operator as set-operator's fields (session.hpp: SetOperator) at the model's values:
+  /// the fields the model takes, each set.
+  struct Operator {
+    std::optional<OperatorKind> kind;    ///< Ugail's or Fu's (spectral)
+    std::optional<std::uint32_t> power;  ///< N, the operator's order over 2 (spectral)
+    double a = 0.0;
+    std::uint32_t modes = 0;
+    bool remainder = true;
+    std::optional<ChainMethod> method;  ///< how a chain is solved (cross-sections)
+  };
+  /// None when the model takes no set-operator.
+  std::optional<Operator> op;
+  /// What its overlay (ModelOverlay) shows, as a caption names it ("Curves and spine");
+  /// empty when it has none.
+  std::string overlay;
+};
+
 /// One surface method. The built-in ones are in src/methods/; a program adds its own with
 /// registerMethod (tests/model/toy_method_test.cpp adds a bilinear Coons method).
 class SurfaceMethod {
@@ -193,6 +219,8 @@ class SurfaceMethod {
   /// spine). The default: none (vertex frames: their handles are the model's vertices, which
   /// the studio's frame tools edit).
   virtual ModelHandles handles(const SolvedModel& solved) const;
+  /// What the model offers to set whole (ModelSettings). The default: nothing.
+  virtual ModelSettings settings(const AnyModel& model) const;
 };
 
 /// Adds a method to the registry, after the built-in ones. Throws InvalidArgument when

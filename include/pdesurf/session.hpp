@@ -228,10 +228,18 @@ struct SetOperator {
   std::optional<bool> remainder;       ///< spectral and cross-sections
   std::optional<ChainMethod> method;   ///< cross-sections only
 };
-/// Replaces a spectral model's spine edits (its file's "spine" field): the studio's spine
-/// drag sends the list with the dragged point's edit (seed 003 §4.2).
+/// Replaces a spectral model's spine edits (its file's "spine" field, seed 003 §4.2).
 struct SetSpine {
   std::vector<SpineEdit> edits;
+};
+/// Moves spine handle `index` of a spectral model (of the spine points its handles list:
+/// SurfaceMethod::handles, at their u) to `position`, the other handles held where they are:
+/// a spine edit at the handles' u (the file's "spine"), which replaces the model's last one
+/// when that is at the same u, else is added. Within a group (a drag) it applies to the model
+/// as the group began, so each step replaces the last (the studio's spine drag).
+struct MoveSpinePoint {
+  std::uint32_t index = 0;
+  Vec3 position = Vec3::Zero();
 };
 /// Inserts a section into a cross-section chain before section `index` (index = count: at
 /// the end). Without a curve the section is the chain's surface sampled half way between
@@ -253,7 +261,7 @@ struct MoveControlPoints {
 };
 
 using ShapeEdit = std::variant<MoveCurvePoints, TransformCurve, SetFourier, SetOperator, SetSpine,
-                               AddSection, RemoveSection, MoveControlPoints>;
+                               MoveSpinePoint, AddSection, RemoveSection, MoveControlPoints>;
 /// A shape edit as the studio sends it, with its undo group (as GroupedEdit).
 struct GroupedShapeEdit {
   ShapeEdit edit;

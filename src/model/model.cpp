@@ -78,6 +78,8 @@ std::shared_ptr<const FrameTopology> SurfaceMethod::topology(const AnyModel&) co
 
 ModelHandles SurfaceMethod::handles(const SolvedModel&) const { return {}; }
 
+ModelSettings SurfaceMethod::settings(const AnyModel&) const { return {}; }
+
 Mesh tessellate(const SolvedModel& solved, const TessellateOptions& options) {
   return solved.surface().tessellate(options);
 }

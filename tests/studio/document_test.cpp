@@ -223,7 +223,7 @@ TEST_F(DocumentTest, ViewOnlyModelsRefuseFrameRoutesAndKeepTheirFileText) {
   }
   // Untransformed, the model is shown and saved exactly as its file was written.
   EXPECT_EQ(doc.modelText(), readText(path));
-  const Json view = doc.viewCurves();
+  const Json view = doc.shapeParts()["view"];
   EXPECT_FALSE(view["curves"].empty());
 }
 

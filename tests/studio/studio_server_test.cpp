@@ -977,6 +977,118 @@ TEST_F(StudioServerTest, ShapeEditsAreCheckedUndoneAndSavedByteForByte) {
   EXPECT_EQ(readText(root_ / "tube.json"), original);
 }
 
+TEST_F(StudioServerTest, EachMethodsSettingsAreItsFilesOwnAndFollowEditsUndoAndLoads) {
+  // GET /api/model's "type" and "settings" (SurfaceMethod::settings), which the page's panels
+  // show instead of reading the model file: for one example of each method, checked against
+  // the example file's own JSON.
+  const fs::path examples = fs::path(PDESURF_SOURCE_DIR) / "examples";
+  const auto open = [&](const std::string& name) {
+    fs::copy_file(examples / name, root_ / name, fs::copy_options::overwrite_existing);
+    EXPECT_EQ(post("/api/open", Json{{"path", name}}.dump())->status, 200);
+    return Json::parse(readText(examples / name));
+  };
+  const auto takes = [](const Json& settings, const char* op) {
+    const Json& edits = settings["edits"];
+    return std::find(edits.begin(), edits.end(), Json(op)) != edits.end();
+  };
+  // A vertex-frame model: its type, its editable parts read by the page, no settings.
+  EXPECT_EQ(model()["type"], "vertex-frames");
+  EXPECT_FALSE(model().contains("settings"));
+
+  // A spectral model: the file's operator, N, a, modes and remainder; the spine moved by name.
+  Json file = open("membrane.json");
+  Json m = model();
+  EXPECT_EQ(m["type"], file["type"]);
+  Json op = m["settings"]["operator"];
+  for (const char* field : {"operator", "N", "a", "modes", "remainder"})
+    EXPECT_EQ(op[field], file[field]) << field;
+  EXPECT_FALSE(op.contains("method"));
+  EXPECT_TRUE(takes(m["settings"], "set-operator"));
+  EXPECT_TRUE(takes(m["settings"], "move-spine-point"));
+  EXPECT_FALSE(takes(m["settings"], "add-section"));
+  EXPECT_EQ(m["settings"]["overlay"], "Curves and spine");
+  // Served once per revision: an edit, its undo and a load are new revisions.
+  ASSERT_EQ(post("/api/edit", R"({"op": "set-operator", "a": 2.5})")->status, 200);
+  EXPECT_EQ(model()["settings"]["operator"]["a"], 2.5);
+  ASSERT_EQ(post("/api/undo")->status, 200);
+  EXPECT_EQ(model()["settings"]["operator"]["a"], file["a"]);
+  ASSERT_EQ(post("/api/redo")->status, 200);
+  EXPECT_EQ(model()["settings"]["operator"]["a"], 2.5);
+
+  // A chain: its a, modes, remainder and method; sections; no operator kind or N.
+  file = open("vase-sections.json");
+  m = model();
+  EXPECT_EQ(m["type"], file["type"]);
+  op = m["settings"]["operator"];
+  for (const char* field : {"a", "modes", "remainder", "method"})
+    EXPECT_EQ(op[field], file[field]) << field;
+  EXPECT_FALSE(op.contains("operator"));
+  EXPECT_FALSE(op.contains("N"));
+  EXPECT_TRUE(takes(m["settings"], "add-section"));
+  EXPECT_TRUE(takes(m["settings"], "remove-section"));
+  EXPECT_EQ(m["settings"]["overlay"], "Curves and spine");
+
+  // A B-spline PDE net: no operator to set; its control points; control nets drawn.
+  file = open("bspline-wave.json");
+  m = model();
+  EXPECT_EQ(m["type"], file["type"]);
+  EXPECT_FALSE(m["settings"].contains("operator"));
+  EXPECT_TRUE(takes(m["settings"], "move-control-points"));
+  EXPECT_FALSE(takes(m["settings"], "set-operator"));
+  EXPECT_EQ(m["settings"]["overlay"], "Control nets");
+}
+
+TEST_F(StudioServerTest, ASpineDragNamesThePointAndHoldsTheOthers) {
+  // move-spine-point: the page names the spine handle and where it goes; the server gives the
+  // file's "spine" one edit through the handles (as GET /api/model lists them), the dragged
+  // one moved, the others held; a drag's steps are absolute (one edit, one undo step).
+  fs::copy_file(fs::path(PDESURF_SOURCE_DIR) / "examples" / "membrane.json",
+                root_ / "membrane.json");
+  ASSERT_EQ(post("/api/open", R"({"path": "membrane.json"})")->status, 200);
+  ASSERT_FALSE(model()["model"].contains("spine"));
+  std::vector<Json> spine;
+  const Json opened = model();
+  for (const Json& h : opened["handles"]["points"])
+    if (h["kind"] == "spine") spine.push_back(h);
+  ASSERT_EQ(spine.size(), 9u);
+  const auto step = [&](int index, const Json& to) {
+    return post(
+        "/api/edit",
+        Json{
+            {"op", "move-spine-point"}, {"index", index}, {"position", to}, {"group", "spine-drag"}}
+            .dump());
+  };
+  const auto offset = [&](int index, double dz) {
+    Json p = spine[index]["p"];
+    p[2] = p[2].get<double>() + dz;
+    return p;
+  };
+  ASSERT_EQ(step(4, offset(4, 0.1))->status, 200);
+  ASSERT_EQ(step(4, offset(4, 0.3))->status, 200);
+  ASSERT_EQ(post("/api/end-group")->status, 200);
+  const auto expectSpine = [&](const std::map<int, Json>& moved) {
+    const Json edits = model()["model"]["spine"];
+    ASSERT_EQ(edits.size(), 1u);
+    for (std::size_t k = 0; k < spine.size(); ++k) {
+      EXPECT_EQ(edits[0]["u"][k], spine[k]["u"]);
+      const auto it = moved.find(static_cast<int>(k));
+      EXPECT_EQ(edits[0]["moved"][k], it == moved.end() ? spine[k]["p"] : it->second) << k;
+    }
+  };
+  expectSpine({{4, offset(4, 0.3)}});
+  EXPECT_EQ(model()["undo"], 1);
+  // Another handle dragged: the same edit (the handles are at the same u) takes it too.
+  ASSERT_EQ(step(6, offset(6, -0.2))->status, 200);
+  ASSERT_EQ(post("/api/end-group")->status, 200);
+  expectSpine({{4, offset(4, 0.3)}, {6, offset(6, -0.2)}});
+  const auto [status, message] = failure(step(9, offset(0, 0)));
+  EXPECT_EQ(status, 400);
+  EXPECT_NE(message.find("$.index"), std::string::npos) << message;
+  ASSERT_EQ(post("/api/undo")->status, 200);
+  ASSERT_EQ(post("/api/undo")->status, 200);
+  EXPECT_FALSE(model()["model"].contains("spine"));
+}
+
 TEST_F(StudioServerTest, BSplineModelsAreShownTransformedAndSaved) {
   // Example 5 (a closed blend): the studio shows its control nets and its surface, moves it,
   // and saves a file that reads back as the moved model.

@@ -49,17 +49,41 @@ export interface ModelView {
   spines: Vec3[][];
 }
 
+/** The operator of a model as set-operator's fields at the model's values (the fields the
+ * model takes: a spectral model's operator and N, a chain's method). */
+export interface OperatorSettings {
+  operator?: 'ugail' | 'fu';
+  N?: number;
+  a: number;
+  modes: number;
+  remainder: boolean;
+  method?: 'global' | 'c2' | 'shared-curves';
+}
+/** What a model without editable parts offers to set whole (SurfaceMethod::settings). */
+export interface ShapeSettings {
+  /** The ops of the edits the model takes. */
+  edits: string[];
+  /** What the frame view draws of it, as its caption names it. */
+  overlay: string;
+  operator?: OperatorSettings;
+}
+
 export interface ModelState extends Status {
   path: string;
   recovery: boolean;
+  /** The model's type (its method's type name: "vertex-frames", "spectral", ...). */
+  type: string;
   /** Whether the model has editable parts (vertex frames; SurfaceMethod::hasEditableParts):
    * false for spectral, cross-section and B-spline PDE models, edited by their handles. */
   hasEditableParts: boolean;
-  /** The model as its file says (a vertex-frames Model when it has editable parts). */
+  /** The model as its file says: the page reads it only when it has editable parts (a
+   * vertex-frames Model); else it is only passed on. */
   model: Model;
   view?: ModelView;
   /** Models without editable parts: what their method offers to drag (SurfaceMethod::handles). */
   handles?: ShapeHandles;
+  /** Models without editable parts: what they offer to set whole (SurfaceMethod::settings). */
+  settings?: ShapeSettings;
   /** Shape models: what to know before dragging a point ("" when a drag stays local). */
   dragAdvice?: string;
 }

@@ -14,8 +14,8 @@ import type { NumberRule } from './input';
 import { gizmoSubjects, pivotChoice, pivotPlaces } from './gizmo';
 import { axisAngleOf, scaledAlong, turnedBy } from './orientation';
 import { singlePivot } from './selection-transform';
-import { curveMoveEdit, dragEdit, operatorOf } from './shape';
-import type { CurveEntry, CurveRef, Handle, ShapeEdit, ShapeHandles, SpineEdit } from './shape';
+import { curveMoveEdit, dragEdit, shapePanels } from './shape';
+import type { CurveEntry, CurveRef, Handle, ShapeEdit, ShapeHandles } from './shape';
 import type { Studio } from './studio';
 
 /** Presses that move less than this many pixels are clicks. */
@@ -27,8 +27,6 @@ const HANDLE_PIXELS = 7;
 /** The curves' centre marks: larger than the points, so a curve is grabbed whole there. */
 const CENTRE_PIXELS = 12;
 const COLOURS = { curve: 0x3d5a80, control: 0x2e7d32, spine: 0xee6c4d, tangent: 0x6a994e, picked: 0xffb300, centre: 0x7b2cbf };
-
-type Json = Record<string, any>; // eslint-disable-line @typescript-eslint/no-explicit-any
 
 declare global {
   interface Window {
@@ -70,16 +68,12 @@ export function mountCurveEditor(studio: Studio): void {
   /** A drag: of a handle (`index` in handles), or of a curve's centre mark (`curve`: the
    * curve's point handles and centre follow by the same offset). */
   let drag:
-    | { handle: Handle; index: number; pointer: number; spine: SpineEdit[]; moved: boolean; x: number; y: number; curve?: undefined }
+    | { handle: Handle; index: number; pointer: number; moved: boolean; x: number; y: number; curve?: undefined }
     | { curve: CurveMove; pointer: number; moved: boolean; x: number; y: number }
     | null = null;
 
-  const shape = (): Json | null => {
-    const s = store.state;
-    return !s.hasEditableParts && s.shape ? (s.shape as Json) : null;
-  };
   /** The server's handles of the model (null: a model with editable parts, or none yet). */
-  const served = (): ShapeHandles | null => (shape() ? store.state.handles : null);
+  const served = (): ShapeHandles | null => (store.state.hasEditableParts ? null : store.state.handles);
 
   const sameRef = (a: Handle, b: Handle) =>
     a.kind === b.kind &&
@@ -232,7 +226,7 @@ export function mountCurveEditor(studio: Studio): void {
 
   // ------------------------------------------------------------------ dragging handles
   canvas.addEventListener('pointerdown', (ev) => {
-    if (ev.button !== 0 || !shape()) return;
+    if (ev.button !== 0 || !served()) return;
     const index = handleAt(ev.clientX, ev.clientY);
     if (index === null) return;
     frameView.controls.enabled = false; // this listener runs before the controls'
@@ -249,7 +243,7 @@ export function mountCurveEditor(studio: Studio): void {
       return;
     }
     const handle = handles[index];
-    drag = { handle, index, pointer: ev.pointerId, spine: structuredClone(shape()!.spine ?? []), moved: false, x: ev.clientX, y: ev.clientY };
+    drag = { handle, index, pointer: ev.pointerId, moved: false, x: ev.clientX, y: ev.clientY };
     canvas.setPointerCapture(ev.pointerId);
     pick(handle, true);
     ev.preventDefault();
@@ -258,7 +252,7 @@ export function mountCurveEditor(studio: Studio): void {
 
   canvas.addEventListener('pointermove', (ev) => {
     if (!drag || ev.pointerId !== drag.pointer) {
-      if (ev.buttons === 0 && shape()) {
+      if (ev.buttons === 0 && served()) {
         const cursor = handleAt(ev.clientX, ev.clientY) !== null ? 'grab' : '';
         if (canvas.style.cursor !== cursor) canvas.style.cursor = cursor;
       }
@@ -280,12 +274,12 @@ export function mountCurveEditor(studio: Studio): void {
       if (target) stepCurveMove(m, [target[0] - m.centre[0], target[1] - m.centre[1], target[2] - m.centre[2]]);
       return;
     }
-    const { handle, index, spine } = drag;
+    const { handle, index } = drag;
     const target = frameView.dragTarget(handle.p, ev.clientX, ev.clientY);
     if (!target) return;
     moveHandle(index, target);
     const server = served();
-    if (server) pump.push(() => send({ ...dragEdit(handle, target, spine, server) }));
+    if (server) pump.push(() => send({ ...dragEdit(handle, target, server) }));
   });
 
   async function endDrag(ev: PointerEvent): Promise<void> {
@@ -331,7 +325,7 @@ export function mountCurveEditor(studio: Studio): void {
   let gizmoMove: (CurveMove & { pivot: Vec3 }) | null = null;
   // A given control point of a net picked (a net has no curves): the gizmo moves, turns and
   // scales it alone about the pivot (move-control-points, absolute).
-  const pickedControl = () => (shape() && picked?.kind === 'control' ? picked : null);
+  const pickedControl = () => (served() && picked?.kind === 'control' ? picked : null);
   const controlPivot = (h: Handle) => singlePivot(pivotChoice(), pivotPlaces(studio, h.p)) ?? h.p;
   let gizmoPoint: { h: Extract<Handle, { kind: 'control' }>; index: number; pivot: Vec3 } | null = null;
   const stepPoint = (at: (p: Vec3) => Vec3) => {
@@ -344,13 +338,13 @@ export function mountCurveEditor(studio: Studio): void {
     centre: () => {
       const control = pickedControl();
       if (control) return control.p;
-      const entry = shape() ? chosen() : null;
+      const entry = chosen();
       return entry && !entry.vectors ? entry.centre : null;
     },
     pivot: () => {
       const control = pickedControl();
       if (control) return controlPivot(control);
-      const entry = shape() ? chosen() : null;
+      const entry = chosen();
       return entry ? curvePivot(entry) : null;
     },
     begin: (kind) => {
@@ -452,9 +446,9 @@ export function mountCurveEditor(studio: Studio): void {
   );
 
   function fillPanel(): void {
-    const model = shape();
-    $('shape-tools').hidden = !model;
-    if (!model) return;
+    const settings = store.state.hasEditableParts ? null : store.state.settings;
+    $('shape-tools').hidden = !settings;
+    if (!settings) return;
     const select = $<HTMLSelectElement>('curve-select');
     const was = select.value;
     select.replaceChildren(
@@ -467,17 +461,18 @@ export function mountCurveEditor(studio: Studio): void {
     );
     if ([...select.options].some((o) => o.value === was)) select.value = was;
     $('curve-tools').hidden = select.options.length === 0; // a net has points, no curves
-    $('section-tools').hidden = model.type !== 'cross-sections';
+    const panels = shapePanels(settings);
+    $('section-tools').hidden = !panels.sections;
     // Told before the drag, not after: the seed's marching chains and ill-conditioned patches.
     const advice = (store.state.status as ModelState | null)?.dragAdvice ?? '';
     $('drag-advice').hidden = !advice;
     $('drag-advice-text').textContent = advice;
-    $('use-global-chain').hidden = !(model.type === 'cross-sections' && advice);
-    const spectral = model.type === 'spectral';
-    $('operator-tools').hidden = !spectral && model.type !== 'cross-sections';
-    if (model.type === 'bspline-pde') return;
-    const op = operatorOf(model);
-    $('operator-kind-label').hidden = $('operator-n-label').hidden = !spectral;
+    $('use-global-chain').hidden = !panels.globalChain;
+    const op = panels.operator;
+    $('operator-tools').hidden = !op;
+    if (!op) return;
+    $('operator-kind-label').hidden = !panels.operatorKind;
+    $('operator-n-label').hidden = !panels.operatorN;
     if (op.operator) $<HTMLSelectElement>('operator-kind').value = op.operator;
     $<HTMLInputElement>('operator-n').value = String(op.N ?? '');
     $<HTMLInputElement>('operator-modes').value = String(op.modes);

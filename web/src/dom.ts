@@ -8,6 +8,16 @@ export function $<T extends HTMLElement = HTMLElement>(id: string): T {
   return el;
 }
 
+/** A button of the page made from a table: its data-testid, label, title and click. */
+export function makeButton(id: string, label: string, title: string, click: () => void): HTMLButtonElement {
+  const button = document.createElement('button');
+  button.dataset.testid = id;
+  button.textContent = label;
+  button.title = title;
+  button.addEventListener('click', click);
+  return button;
+}
+
 export function plural(n: number, word: string): string {
   return `${n} ${word}${n === 1 ? '' : 's'}`;
 }

@@ -168,7 +168,7 @@ export function mountGizmo(studio: Studio): Gizmo {
     },
   };
   /** The vertex selection, or the chosen curve of the other model types (curve-editor.ts). */
-  const subject = (): GizmoSubject | null => (store.state.model ? vertexSubject : store.state.shape ? (gizmoSubjects.shape ?? null) : null);
+  const subject = (): GizmoSubject | null => (store.state.model ? vertexSubject : store.state.handles ? (gizmoSubjects.shape ?? null) : null);
   /** Where the drag in progress started (null: none), and the proxy's turn then. */
   let dragStart: THREE.Vector3 | null = null;
   let turnStart = new THREE.Quaternion();

@@ -3,6 +3,7 @@
 import { $ } from './dom';
 import type { Studio } from './studio';
 import type { ModellerActions } from './modeller';
+import { VIEWS } from './views';
 import type { ViewActions } from './views';
 
 interface Shortcut {
@@ -28,7 +29,7 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
   const click = (id: string) => () => $<HTMLButtonElement>(id).click();
   /** Whether the open model is a spectral, cross-section or B-spline PDE one (its curves are
    * what the transform keys act on: curve-editor.ts). */
-  const shapeModel = () => !!store.state.shape;
+  const shapeModel = () => !!store.state.handles;
   const toggle = (id: string) => () => {
     const box = $<HTMLInputElement>(id);
     box.checked = !box.checked;
@@ -60,13 +61,7 @@ export function mountKeys(studio: Studio, views: ViewActions, modeller?: Modelle
     } },
     { keys: 'F', what: 'Fit the selection (all when nothing is selected)', matches: (e) => plain('f')(e) && !e.shiftKey, run: () => views.fitSelection() },
     { keys: 'Shift+F, Home', what: 'Fit all', matches: (e) => (plain('f')(e) && e.shiftKey) || e.key === 'Home', run: () => views.fitAll() },
-    { keys: '1', what: 'Front view (looking along +y)', matches: plain('1'), run: () => views.view('front') },
-    { keys: '2', what: 'Back view', matches: plain('2'), run: () => views.view('back') },
-    { keys: '3', what: 'Right view (looking along -x)', matches: plain('3'), run: () => views.view('right') },
-    { keys: '4', what: 'Left view', matches: plain('4'), run: () => views.view('left') },
-    { keys: '5', what: 'Top view (looking down z)', matches: plain('5'), run: () => views.view('top') },
-    { keys: '6', what: 'Bottom view', matches: plain('6'), run: () => views.view('bottom') },
-    { keys: '0', what: 'Three-quarter view', matches: plain('0'), run: () => views.view('iso') },
+    ...VIEWS.map((v) => ({ keys: v.key, what: v.what, matches: plain(v.key), run: () => views.view(v.name) })),
     { keys: 'K', what: 'Link the two cameras (on/off)', matches: plain('k'), run: () => views.toggleLink() },
     { keys: 'Z', what: 'Zebra stripes (on/off)', matches: (e) => plain('z')(e) && !e.shiftKey, run: toggle('zebra') },
     { keys: 'C', what: 'Curvature colours: off, mean, Gaussian', matches: plain('c'), run: () => {

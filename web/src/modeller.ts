@@ -7,7 +7,7 @@
 import * as THREE from 'three';
 import { api } from './api';
 import type { Vec3 } from './api';
-import { $, readNumber } from './dom';
+import { $, makeButton, readNumber } from './dom';
 import { mountForcesTool } from './forces-tool';
 import type { ForcesTool } from './forces-tool';
 import { mountGizmo, selectionPivots, selectionVertices } from './gizmo';
@@ -52,6 +52,16 @@ export interface ModellerActions {
    * frames through it along u (loop) or v (ring). */
   select(how: 'all' | 'inverse' | 'linked' | 'loop' | 'ring'): void;
 }
+
+/** The selection buttons: what each selects (ModellerActions.select), its label and title. */
+const SELECTIONS = [
+  ['all', 'All', 'Every frame and vertex (Ctrl+A)'],
+  ['inverse', 'Invert', 'What is not selected (Ctrl+I)'],
+  ['linked', 'Linked', 'Every frame joined to the selection, with its vertices (Ctrl+L)'],
+  ['loop', 'Loop', 'The strip of frames through each selected frame across its u = 0 and u = 1 sides, round a tube too (Alt+L)'],
+  ['ring', 'Ring', 'The strip of frames through each selected frame across its v = 0 and v = 1 sides (Alt+R)'],
+] as const;
+
 
 export function mountModeller(
   studio: Studio,
@@ -115,11 +125,7 @@ export function mountModeller(
         studio.say(`${next.vertices.length} vertices, ${next.frames.size} frames selected`);
       }),
   };
-  $('select-all').addEventListener('click', () => actions.select('all'));
-  $('select-inverse').addEventListener('click', () => actions.select('inverse'));
-  $('select-linked').addEventListener('click', () => actions.select('linked'));
-  $('select-loop').addEventListener('click', () => actions.select('loop'));
-  $('select-ring').addEventListener('click', () => actions.select('ring'));
+  $('select-buttons').append(...SELECTIONS.map(([how, label, title]) => makeButton(`select-${how}`, label, title, () => actions.select(how))));
   $('new-model').addEventListener('click', actions.newModel);
   $('extrude').addEventListener('click', actions.extrude);
   $('add-frame').addEventListener('click', actions.addFrame);

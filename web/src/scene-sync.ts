@@ -26,11 +26,7 @@ export function mountSceneSync(studio: Studio): void {
       surfaceView.setBoundaries(null, state.selectedFrames);
     }
     if (!topics.has('model')) return;
-    $('frame-caption').textContent = state.hasEditableParts
-      ? 'Vertex frames'
-      : state.modelType === 'bspline-pde'
-        ? 'Control nets'
-        : 'Curves and spine';
+    $('frame-caption').textContent = state.hasEditableParts ? 'Vertex frames' : (state.settings?.overlay ?? '');
     surfaceView.setOverlay(overlayWanted(studio));
   });
   // A moved vertex (a drag): only its handle and line ends change.

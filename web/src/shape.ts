@@ -1,25 +1,19 @@
 // The shape edits of spectral, cross-section and B-spline PDE models as the page makes them:
-// the edit a drag of one of the server's handles sends (the handles and the curves the panel
-// lists are the server's: GET /api/model's "handles"). No DOM here (web/test/shape.test.ts
-// checks it); curve-editor.ts draws and drags.
-import type { Vec3 } from './api';
-
-/** A spine edit as the model file's "spine" field holds it (docs/model-format.md). */
-export interface SpineEdit {
-  u: number[];
-  moved: Vec3[];
-}
+// the edit a drag of one of the server's handles sends, and which panels show. What they read
+// is the server's (GET /api/model's "handles" and "settings"), never the model file. No DOM
+// here (web/test/shape.test.ts checks it); curve-editor.ts draws and drags.
+import type { OperatorSettings, ShapeSettings, Vec3 } from './api';
 
 /** A curve of a model: a condition's or section's index, or a B-spline curve's name. */
 export type CurveRef = number | string;
 
-/** The shape edits the server takes (include/pdesurf/edit_io.hpp: parseShapeEdit). */
+/** The shape edits the page sends (include/pdesurf/edit_io.hpp: parseShapeEdit). */
 export type ShapeEdit =
   | { op: 'move-curve-points'; curve: CurveRef; points: number[]; positions: Vec3[]; falloff?: number; group?: string }
   | { op: 'transform-curve'; curve: CurveRef; translate?: Vec3; rotate?: { axis: Vec3; degrees: number }; scale?: number; center?: Vec3; from?: 'group-start'; group?: string }
   | { op: 'set-fourier'; curve: CurveRef; a0?: Vec3; a?: Vec3[]; b?: Vec3[]; group?: string }
   | { op: 'set-operator'; operator?: 'ugail' | 'fu'; N?: number; a?: number; modes?: number; remainder?: boolean; method?: 'global' | 'c2' | 'shared-curves'; group?: string }
-  | { op: 'set-spine'; spine: SpineEdit[]; group?: string }
+  | { op: 'move-spine-point'; index: number; position: Vec3; group?: string }
   | { op: 'add-section'; index: number }
   | { op: 'remove-section'; index: number }
   | { op: 'move-control-points'; points: [number, number][]; positions: Vec3[]; group?: string };
@@ -52,29 +46,16 @@ export interface ShapeHandles {
   tangentDraw: number;
 }
 
-function sameNumbers(a: number[], b: number[]): boolean {
-  return a.length === b.length && a.every((x, i) => x === b[i]);
-}
-
-/** The spine list after dragging spine handle `k` (at u[k], of the handles at `u` with their
- * points `points`) to `target`: the other handles held where they are. A last edit on the same
- * u takes the new point (the file keeps one edit per set of handles); else one is added. */
-export function spineWith(spine: SpineEdit[], u: number[], points: Vec3[], k: number, target: Vec3): SpineEdit[] {
-  const last = spine[spine.length - 1];
-  if (last && sameNumbers(last.u, u))
-    return [...spine.slice(0, -1), { u, moved: last.moved.map((p, i) => (i === k ? target : p)) }];
-  return [...spine, { u, moved: points.map((p, i) => (i === k ? target : p)) }];
-}
-
 /** A point of a closed curve (a section, a spectral condition: the curves named by number)
  * drags the curve round it too, in a compact bump this fraction of the curve's length each
  * side (kStudioFalloff in include/pdesurf/session.hpp): the section stays smooth and the edit
  * local. B-spline curves (named) are control polygons, local already. */
 export const CLOSED_CURVE_FALLOFF = 0.125;
 
-/** The edit that puts handle `h` at `target` (absolute: a drag's later steps replace its
- * earlier ones). `spine` is the model's spine list when the drag began; `handles` the model's. */
-export function dragEdit(h: Handle, target: Vec3, spine: SpineEdit[], handles: ShapeHandles): ShapeEdit {
+/** The edit that puts handle `h` (of the model's `handles`) at `target` (absolute: a drag's
+ * later steps replace its earlier ones; a spine point's the server applies to the model as the
+ * drag began, the other spine handles held where they were). */
+export function dragEdit(h: Handle, target: Vec3, handles: ShapeHandles): ShapeEdit {
   if (h.kind === 'curve')
     return typeof h.curve === 'number'
       ? { op: 'move-curve-points', curve: h.curve, points: [h.point], positions: [target], falloff: CLOSED_CURVE_FALLOFF }
@@ -85,9 +66,7 @@ export function dragEdit(h: Handle, target: Vec3, spine: SpineEdit[], handles: S
     return { op: 'move-curve-points', curve: h.curve, points: [h.point], positions: [vector] };
   }
   if (h.kind === 'control') return { op: 'move-control-points', points: [[h.i, h.j]], positions: [target] };
-  const spinePoints = handles.points.filter((s) => s.kind === 'spine');
-  const u = spinePoints.map((s) => (s.kind === 'spine' ? s.u : 0));
-  return { op: 'set-spine', spine: spineWith(spine, u, spinePoints.map((s) => s.p), h.index, target) };
+  return { op: 'move-spine-point', index: h.index, position: target };
 }
 
 /** One step of a drag of a whole curve: the curve moved by `d` from where it was when the drag
@@ -98,15 +77,25 @@ export function curveMoveEdit(curve: CurveRef, d: Vec3): ShapeEdit {
   return { op: 'transform-curve', curve, translate: d, from: 'group-start' };
 }
 
-// A model file's fields, as far as the operator panel reads them (docs/model-format.md).
-type Json = Record<string, any>; // eslint-disable-line @typescript-eslint/no-explicit-any
+/** Which parts of the shape panel show for a model and the operator's values, from what the
+ * server says it offers (GET /api/model's "settings"): sections when it takes add-section and
+ * remove-section; the operator when it has one, its kind and N when it names them; the global
+ * chain's button when a chain is solved another way. */
+export interface ShapePanels {
+  sections: boolean;
+  operator: OperatorSettings | null;
+  operatorKind: boolean;
+  operatorN: boolean;
+  globalChain: boolean;
+}
 
-/** The operator settings a spectral model or a chain has, with the files' defaults. */
-export function operatorOf(model: Json): { operator: 'ugail' | 'fu' | null; N: number | null; a: number; modes: number; remainder: boolean } {
-  const modes = model.modes ?? 6;
-  const remainder = model.remainder ?? true;
-  if (model.type === 'cross-sections') return { operator: null, N: null, a: model.a ?? 1, modes, remainder };
-  const fu = model.operator === 'fu';
-  const N = fu ? 3 : (model.N ?? 2);
-  return { operator: fu ? 'fu' : 'ugail', N, a: model.a ?? (fu ? 1 : N), modes, remainder };
+export function shapePanels(settings: ShapeSettings): ShapePanels {
+  const op = settings.operator ?? null;
+  return {
+    sections: settings.edits.includes('add-section') && settings.edits.includes('remove-section'),
+    operator: op,
+    operatorKind: op?.operator !== undefined,
+    operatorN: op?.N !== undefined,
+    globalChain: op?.method !== undefined && op.method !== 'global',
+  };
 }

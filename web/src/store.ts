@@ -1,7 +1,7 @@
 // The page's state and the one way to change it (as the three.js editor's Editor and its
 // signals): every write goes through Store.update, which names the topics it touched; the renderers subscribed to those topics run once, together, in the
 // next microtask. Nothing else writes the state or calls a renderer.
-import type { MeshData, Model, ModelView, Status, Vec3 } from './api';
+import type { MeshData, Model, ModelView, ShapeSettings, Status, Vec3 } from './api';
 import type { ShapeHandles } from './shape';
 
 export interface State {
@@ -13,15 +13,16 @@ export interface State {
    * library's SurfaceMethod::hasEditableParts); without them the page drags the handles the
    * server sends. */
   hasEditableParts: boolean;
-  /** The model's type (its file's "type"), or '' before one is open. */
+  /** The model's type (the server's name for its method), or '' before one is open. */
   modelType: string;
   /** The curves and spines of a model without editable parts. */
   view: ModelView | null;
-  /** A spectral, cross-section or B-spline PDE model as its file says (curve-editor.ts edits
-   * its curves, nets and spine through the server's shape edits). */
-  shape: unknown;
-  /** What the server says such a model offers to drag (its method's handles), else null. */
+  /** What the server says a model without editable parts (spectral, cross-section, B-spline
+   * PDE) offers to drag (its method's handles), else null: curve-editor.ts drags them. */
   handles: ShapeHandles | null;
+  /** What the server says such a model offers to set whole (its method's settings), else
+   * null: curve-editor.ts's panels show them. */
+  settings: ShapeSettings | null;
   status: Status | null;
   /** An autosave differs from the file (offer to recover it). */
   recovery: boolean;
@@ -63,8 +64,8 @@ export function initialState(): State {
     hasEditableParts: true,
     modelType: '',
     view: null,
-    shape: null,
     handles: null,
+    settings: null,
     status: null,
     recovery: false,
     selectedVertex: null,

@@ -173,10 +173,10 @@ export class Studio {
     store.update(['model', 'status', 'selection', 'forces'], (s) => {
       s.model = editable ? m.model : null;
       s.hasEditableParts = editable;
-      s.modelType = (m.model as { type?: string }).type ?? 'this';
+      s.modelType = m.type;
       s.view = editable ? null : (m.view ?? { curves: [], spines: [] });
-      s.shape = editable ? null : m.model;
       s.handles = editable ? null : (m.handles ?? null);
+      s.settings = editable ? null : (m.settings ?? null);
       s.path = m.path;
       s.status = m;
       s.recovery = m.recovery;

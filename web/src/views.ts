@@ -1,8 +1,8 @@
 // View presets, fit all / fit selection, and linked cameras (orbiting one view moves the
 // other). Presets and fits apply to both views: they show the same model in the same space.
 import * as THREE from 'three';
-import { $ } from './dom';
-import { VIEW_DIRECTIONS, modelBox, pointsBox } from './viewport';
+import { $, makeButton } from './dom';
+import { modelBox, pointsBox } from './viewport';
 import type { ViewName } from './viewport';
 import type { State } from './store';
 import type { Studio } from './studio';
@@ -28,6 +28,17 @@ export function selectionBox(state: Readonly<State>): THREE.Box3 {
   }
   return box;
 }
+
+/** The standard views: each a button in the header (its label) and a key (keys.ts). */
+export const VIEWS: readonly { name: ViewName; label: string; key: string; what: string }[] = [
+  { name: 'front', label: 'Front', key: '1', what: 'Front view (looking along +y)' },
+  { name: 'back', label: 'Back', key: '2', what: 'Back view' },
+  { name: 'right', label: 'Right', key: '3', what: 'Right view (looking along -x)' },
+  { name: 'left', label: 'Left', key: '4', what: 'Left view' },
+  { name: 'top', label: 'Top', key: '5', what: 'Top view (looking down z)' },
+  { name: 'bottom', label: 'Bottom', key: '6', what: 'Bottom view' },
+  { name: 'iso', label: '3/4', key: '0', what: 'Three-quarter view' },
+];
 
 export interface ViewActions {
   view(name: ViewName): void;
@@ -72,8 +83,7 @@ export function mountViews(studio: Studio): ViewActions {
       link.dispatchEvent(new Event('change'));
     },
   };
-  for (const name of Object.keys(VIEW_DIRECTIONS) as ViewName[])
-    $(`view-${name}`).addEventListener('click', () => actions.view(name));
+  $('fit-all').before(...VIEWS.map((v) => makeButton(`view-${v.name}`, v.label, `${v.what} (${v.key})`, () => actions.view(v.name))));
   $('fit-all').addEventListener('click', () => actions.fitAll());
   $('fit-selection').addEventListener('click', () => actions.fitSelection());
   return actions;

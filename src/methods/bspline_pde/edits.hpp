@@ -28,6 +28,8 @@ struct ShapeEditsOf<BSplinePdeModel> {
   /// row's tips (drawn from the side they leave, at their parameters on it) and a net's given
   /// control points (rows 0, 1, n_u and columns 0, 1, n_v).
   static ModelHandles handles(const BSplinePdeModel& m, const SolvedModel& solved);
+  /// No operator to set; its overlay: control nets.
+  static ModelSettings settings(const BSplinePdeModel&) { return {{}, {}, "Control nets"}; }
 };
 
 }  // namespace pdesurf::detail

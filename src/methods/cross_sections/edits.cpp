@@ -132,4 +132,14 @@ ModelHandles ShapeEditsOf<CrossSectionModel>::handles(const CrossSectionModel& m
   return out;
 }
 
+ModelSettings ShapeEditsOf<CrossSectionModel>::settings(const CrossSectionModel& m) {
+  ModelSettings out;
+  out.op = ModelSettings::Operator{.a = m.options.a,
+                                   .modes = m.options.modes,
+                                   .remainder = m.options.remainder,
+                                   .method = m.options.method};
+  out.overlay = "Curves and spine";
+  return out;
+}
+
 }  // namespace pdesurf::detail

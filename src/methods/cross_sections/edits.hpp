@@ -26,6 +26,8 @@ struct ShapeEditsOf<CrossSectionModel> {
   static std::string dragAdvice(const CrossSectionModel& m);
   /// Its sections' points.
   static ModelHandles handles(const CrossSectionModel& m, const SolvedModel& solved);
+  /// Its chain's a, modes, remainder and method; its overlay: curves and spine.
+  static ModelSettings settings(const CrossSectionModel& m);
 };
 
 }  // namespace pdesurf::detail

@@ -142,7 +142,8 @@ EditResult applyShapeEdit(const ShapeEditor& editor, const EditContext& context,
   const ModelState* base = &context.current;
   const auto* t = std::get_if<TransformCurve>(&edit);
   const auto* m = std::get_if<MoveCurvePoints>(&edit);
-  if (((t && t->fromGroupStart) || (m && m->falloff > 0.0)) && context.groupStart)
+  const bool spine = std::holds_alternative<MoveSpinePoint>(edit);
+  if (((t && t->fromGroupStart) || (m && m->falloff > 0.0) || spine) && context.groupStart)
     base = context.groupStart;
   auto next =
       std::make_shared<const AnyModel>(shapeEdited(editor, *base->model, *base->solved, edit));

@@ -59,7 +59,7 @@ std::string methodsTaking(std::string_view op) {
 
 /// Every shape edit's op: the curve edits, then each method's own, once each.
 std::string knownOps() {
-  std::vector<std::string_view> ops = {"move-curve-points", "transform-curve", "set-fourier"};
+  std::vector<std::string_view> ops(detail::kCurveOps.begin(), detail::kCurveOps.end());
   for (const SurfaceMethod* method : surfaceMethods())
     if (const auto* editor = dynamic_cast<const detail::ShapeEditor*>(method))
       for (const char* own : editor->ownOps())

@@ -5,6 +5,7 @@
 // specialisation of ShapeEditsOf for its model type, which ShapeEditedMethod calls.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -27,6 +28,10 @@ struct CurveTarget {
   bool vectors = false;
   std::string path;
 };
+
+/// The ops of the curve edits every shape-edited method takes (parse.cpp parses them).
+inline constexpr std::array<const char*, 3> kCurveOps = {"move-curve-points", "transform-curve",
+                                                         "set-fourier"};
 
 /// A shape-edited method's own part, on its models (ShapeEditedMethod implements it with its
 /// ShapeEditsOf<Model>): the shared code reaches a method's own part through this alone.
@@ -97,8 +102,8 @@ void addTangents(ModelHandles& out, const CurveRef& ref, const std::vector<Vec3>
 
 /// What a shape-edited method's model type `Model` does itself: specialised in the method's
 /// folder (spectral/edits.hpp, cross_sections/edits.hpp, bspline_pde/edits.hpp) with
-/// static members of ShapeEditor's names on `Model` (ShapeEditedMethod's calls below), and
-/// `handles(const Model&, const SolvedModel&)`.
+/// static members of ShapeEditor's names on `Model` (ShapeEditedMethod's calls below),
+/// `handles(const Model&, const SolvedModel&)` and `settings(const Model&)`.
 template <class Model>
 struct ShapeEditsOf;
 
@@ -120,6 +125,13 @@ class ShapeEditedMethod : public Base, public ShapeEditor {
   }
   ModelHandles handles(const SolvedModel& solved) const override {
     return Own::handles(solved.model().template get<Model>(), solved);
+  }
+  /// The method's own settings, its edits the curve edits and then its own.
+  ModelSettings settings(const AnyModel& model) const override {
+    ModelSettings out = Own::settings(model.template get<Model>());
+    out.edits.assign(kCurveOps.begin(), kCurveOps.end());
+    out.edits.insert(out.edits.end(), Own::kOps.begin(), Own::kOps.end());
+    return out;
   }
 
   CurveTarget curve(AnyModel& model, const CurveRef& ref, const std::string& path) const override {

@@ -84,6 +84,14 @@ CurveTarget ShapeEditsOf<SpectralModel>::curve(SpectralModel& m, const CurveRef&
 ShapeEdit ShapeEditsOf<SpectralModel>::parseOwnEdit(std::string_view op, const ModelReader& rd,
                                                     const Json& doc, const SpectralModel&) {
   if (op == "set-operator") return parseSetOperator(rd, doc, true);
+  if (op == "move-spine-point") {
+    onlyMembers(rd, doc, {"index", "position"});
+    MoveSpinePoint e;
+    e.index = rd.index(rd.member(doc, "$", "index"), "$.index", kSpineHandles, "spine point",
+                       "spine points");
+    e.position = rd.vec3(rd.member(doc, "$", "position"), "$.position");
+    return e;
+  }
   // set-spine: the file's own field, its order and counts checked with the model (the same
   // paths).
   onlyMembers(rd, doc, {"spine"});
@@ -107,10 +115,20 @@ ShapeEdit ShapeEditsOf<SpectralModel>::parseOwnEdit(std::string_view op, const M
   return e;
 }
 
-void ShapeEditsOf<SpectralModel>::applyOwnEdit(SpectralModel& m, const SolvedModel&,
+void ShapeEditsOf<SpectralModel>::applyOwnEdit(SpectralModel& m, const SolvedModel& solved,
                                                const ShapeEdit& edit) {
   if (const auto* spine = std::get_if<SetSpine>(&edit)) {
     m.spineEdits = spine->edits;
+    return;
+  }
+  if (const auto* point = std::get_if<MoveSpinePoint>(&edit)) {
+    // The handles where `solved` has them, the moved one at its position.
+    const SpineHandles at = spineHandles(solved, kSpineHandles);
+    if (point->index >= at.points.size())
+      ModelReader("edit").fail("$.index", "the model has no spine to move");
+    std::vector<SpineEdit>& edits = m.spineEdits;
+    if (edits.empty() || edits.back().u != at.u) edits.push_back({at.u, at.points});
+    edits.back().moved[point->index] = point->position;
     return;
   }
   const auto& e = std::get<SetOperator>(edit);
@@ -214,6 +232,17 @@ ModelHandles ShapeEditsOf<SpectralModel>::handles(const SpectralModel& m,
     h.position = spine.points[k];
     h.u = spine.u[k];
   }
+  return out;
+}
+
+ModelSettings ShapeEditsOf<SpectralModel>::settings(const SpectralModel& m) {
+  ModelSettings out;
+  out.op = ModelSettings::Operator{.kind = m.op.kind,
+                                   .power = m.op.power,
+                                   .a = m.op.a,
+                                   .modes = m.options.modes,
+                                   .remainder = m.options.remainder};
+  out.overlay = "Curves and spine";
   return out;
 }
 

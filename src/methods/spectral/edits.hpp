@@ -24,7 +24,8 @@ Vec3 curveA0(const CurveInput& c);
 
 template <>
 struct ShapeEditsOf<SpectralModel> {
-  static constexpr std::array<const char*, 2> kOps = {"set-operator", "set-spine"};
+  static constexpr std::array<const char*, 3> kOps = {"set-operator", "set-spine",
+                                                      "move-spine-point"};
   static CurveTarget curve(SpectralModel& m, const CurveRef& ref, const std::string& path);
   static ShapeEdit parseOwnEdit(std::string_view op, const ModelReader& rd, const Json& doc,
                                 const SpectralModel& m);
@@ -36,6 +37,8 @@ struct ShapeEditsOf<SpectralModel> {
   /// of the position condition at its u; a Fourier one's a0 from that condition's centre) and
   /// spine points (spineHandles, kSpineHandles of them).
   static ModelHandles handles(const SpectralModel& m, const SolvedModel& solved);
+  /// Its operator (kind, N, a, modes, remainder); its overlay: curves and spine.
+  static ModelSettings settings(const SpectralModel& m);
 };
 
 }  // namespace pdesurf::detail
