@@ -24,6 +24,12 @@ std::string madeLine(const AutoLayoutReport& a) {
           : fmt::format(" ({} without area left out)", count(a.skippedTriangles, "triangle")));
 }
 
+/// "0.1% folded and 10° normal deviation".
+std::string boundsText(double maxFoldedArea, double maxNormalDeviation) {
+  return fmt::format("{} folded and {:g}° normal deviation", percent(maxFoldedArea),
+                     maxNormalDeviation);
+}
+
 }  // namespace
 
 void AutoLayoutArgs::add(CLI::App* cmd) {
@@ -45,6 +51,12 @@ void AutoLayoutArgs::add(CLI::App* cmd) {
                   "vertex-frames, automatic layout: edges whose triangles' normals differ by "
                   "more than this (degrees, default 60) stay on frame edges")
       ->check(CLI::Range(0.0, 180.0));
+  maxNormalDeviationOption = cmd->add_option(
+      "--max-normal-deviation", maxNormalDeviation,
+      fmt::format("vertex-frames, --target-rms: the model's RMS normal deviation (degrees, "
+                  "against the mesh's normals, as compare measures it) at most this too "
+                  "(default {:g}; 180: no bound)",
+                  kMaxNormalDeviation));
 }
 
 void AutoLayoutArgs::apply(RebuildOptions& options) const {
@@ -52,6 +64,8 @@ void AutoLayoutArgs::apply(RebuildOptions& options) const {
   if (!targetRms.empty()) options.targetRms = parseTargetRms(targetRms);
   if (!quads.empty()) options.quads = parseQuadConstruction(quads);
   if (creaseAngle >= 0.0) options.creaseAngle = creaseAngle;
+  if (maxNormalDeviationOption != nullptr && maxNormalDeviationOption->count() > 0)
+    options.maxNormalDeviation = maxNormalDeviation;
 }
 
 void printAutomaticLayout(const AutoLayoutReport& layout) {
@@ -67,39 +81,54 @@ void printAutomaticLayout(const AutoLayoutReport& layout) {
 }
 
 void printTrial(const RebuildOptions& options, std::uint32_t requested, const AutoFit& f) {
-  const double target = options.targetRms.value_or(0.0);
-  const bool rms = f.worseRms() <= target;
-  const bool flat = f.normals.foldedArea <= kMaxFoldedArea;
+  const TargetSearchOptions search = targetSearchOptions(options);
+  const TargetCheck met = checkTarget(f, search);
+  std::string verdict;
+  if (!met.rms)
+    verdict = fmt::format("misses {}", percent(search.targetRms));
+  else if (met.all())
+    verdict = fmt::format("reaches {} within {}", percent(search.targetRms),
+                          boundsText(search.maxFoldedArea, search.maxNormalDeviation));
+  else
+    verdict = fmt::format("reaches {} but {}", percent(search.targetRms),
+                          !met.folds
+                              ? fmt::format("folds more than {}", percent(search.maxFoldedArea))
+                              : fmt::format("deviates more than {:g}°", search.maxNormalDeviation));
   fmt::print(
-      "trial: {} asked for, {} made{}: model -> mesh RMS {}, mesh -> model RMS {}, folded {} "
-      "({})\n",
+      "trial: {} asked for, {} made{}: model -> mesh RMS {}, mesh -> model RMS {}, folded {}, "
+      "normals {:.3g}° ({})\n",
       count(requested, "frame"), f.layout.model.frames.size(),
       f.foldsPrevented && !options.fit.preventFolds ? ", steps that fold more refused" : "",
       percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
-      percent(f.normals.foldedArea),
-      rms && flat
-          ? fmt::format("reaches {} within {} folded", percent(target), percent(kMaxFoldedArea))
-      : rms ? fmt::format("reaches {} but folds more than {}", percent(target),
-                          percent(kMaxFoldedArea))
-            : fmt::format("misses {}", percent(target)));
+      percent(f.normals.foldedArea), f.normals.rmsDegrees, verdict);
 }
 
 void printSearch(const RebuildOptions& options, const RebuildReport& report) {
   const TargetSearchReport& s = *report.search;
   const AutoLayoutReport& best = *report.automatic;
+  const std::string bounds = boundsText(s.maxFoldedArea, s.maxNormalDeviation);
+  const std::string answer =
+      fmt::format("{} folds {} and deviates {:.3g}°", count(best.frames, "frame"),
+                  percent(s.foldedArea), s.normalDeviation);
   if (s.reached)
     fmt::print(
-        "target RMS {} reached both ways within {} folded with {}{} ({} tried): {}\n",
-        percent(s.targetRms), percent(s.maxFoldedArea), count(best.frames, "frame"),
+        "target RMS {} reached both ways within {} with {}{} ({} tried): {}\n",
+        percent(s.targetRms), bounds, count(best.frames, "frame"),
         s.foldsPrevented && !options.fit.preventFolds ? " (steps that fold more refused)" : "",
         count(s.trials, "layout"), madeLine(best));
-  else if (s.rmsReached)
+  else if (s.stop == TargetSearch::Stop::NormalsStalled)
     fmt::print(
-        "target RMS {} reached both ways, but every layout that reached it folds more than {} "
-        "({} tried, up to {}x the smallest that reached the RMS): the least folded, {}, "
-        "folds {}\n",
-        percent(s.targetRms), percent(s.maxFoldedArea), count(s.trials, "layout"), kFoldGrowthLimit,
-        count(best.frames, "frame"), percent(s.foldedArea));
+        "target RMS {} reached both ways within {} folded, but NOT the normal deviation of "
+        "{:g}° ({} tried): it fell by less than {:g}% a doubling of the frames; the layout "
+        "before that step, {}\n",
+        percent(s.targetRms), percent(s.maxFoldedArea), s.maxNormalDeviation,
+        count(s.trials, "layout"), 100 * kNormalStall, answer);
+  else if (s.met.rms)
+    fmt::print(
+        "target RMS {} reached both ways, but NOT within {} ({} tried, up to {}x the smallest "
+        "that reached the RMS{}): the closest, {}\n",
+        percent(s.targetRms), bounds, count(s.trials, "layout"), kGrowthPastRms,
+        s.stop == TargetSearch::Stop::LayoutStopped ? "; the layout grows no further" : "", answer);
   else
     fmt::print(
         "target RMS {} NOT reached ({} tried; the layout grows no further): the closest, {}, "

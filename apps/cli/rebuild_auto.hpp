@@ -17,6 +17,8 @@ struct AutoLayoutArgs {
   std::string targetRms;      ///< --target-rms X, as given ("0.002" or "0.2%"; empty: not given)
   std::string quads;          ///< --quads pair|split (empty: not given, pair)
   double creaseAngle = -1.0;  ///< --crease-angle (negative: not given, 60°)
+  double maxNormalDeviation = kMaxNormalDeviation;  ///< --max-normal-deviation DEGREES
+  CLI::Option* maxNormalDeviationOption = nullptr;  ///< ... and whether it was given
 
   void add(CLI::App* cmd);
   /// Sets the automatic layout's options that were given (--target-rms parsed: a bad one

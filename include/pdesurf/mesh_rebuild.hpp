@@ -61,6 +61,9 @@ struct RebuildOptions {
   std::optional<double> targetRms;
   std::optional<QuadConstruction> quads;  ///< default PairTriangles
   std::optional<double> creaseAngle;      ///< degrees in [0, 180], default 60
+  /// With targetRms: the bound on the model's RMS normal deviation, degrees in [0, 180]
+  /// (default kMaxNormalDeviation; 180: no bound).
+  std::optional<double> maxNormalDeviation;
   /// The fit: maxIterations 0 to 100000, tolerance [0, 1], smoothness [0, 1e6],
   /// samplesPerSide 0 (automatic) or 3 to 65, conformalWeight (--fold-weight) [0, 1];
   /// preventFolds, fitShape. Its onIteration is RebuildProgress's.
@@ -114,6 +117,11 @@ void checkRebuildOptions(const RebuildOptions& options,
 /// RebuildOptionError unless it is a number in (0, 1) (a percentage in (0 %, 100 %)).
 double parseTargetRms(const std::string& text, RebuildOptionStyle style = RebuildOptionStyle::Cli);
 
+/// The target search that `options` ask for (RebuildOptions::targetRms, read as 0 where it is
+/// not set; maxNormalDeviation; the automatic layout's shape; the fit without its
+/// onIteration; the resolution); its onTrial is empty.
+TargetSearchOptions targetSearchOptions(const RebuildOptions& options);
+
 /// "vertex-frames" or "cross-sections"; "pair" or "split"; "natural" or "estimated"; else none.
 std::optional<RebuildKind> parseRebuildKind(std::string_view name);
 std::optional<QuadConstruction> parseQuadConstruction(std::string_view name);
@@ -129,12 +137,15 @@ struct AutoLayoutReport {
 
 /// How the target-RMS search ended (TargetSearch).
 struct TargetSearchReport {
-  double targetRms = 0.0, maxFoldedArea = 0.0;
-  bool reached = false, rmsReached = false;
+  double targetRms = 0.0, maxFoldedArea = 0.0, maxNormalDeviation = 0.0;
+  bool reached = false;
+  TargetCheck met;  ///< the criteria the answer meets
+  TargetSearch::Stop stop = TargetSearch::Stop::Reached;
   std::uint32_t trials = 0;
-  bool foldsPrevented = false;  ///< the answer was fitted with steps that fold more refused
-  double worseRms = 0.0;        ///< the answer's larger one-way RMS (of the diagonal)
-  double foldedArea = 0.0;      ///< the answer's folded share of its area
+  bool foldsPrevented = false;   ///< the answer was fitted with steps that fold more refused
+  double worseRms = 0.0;         ///< the answer's larger one-way RMS (of the diagonal)
+  double foldedArea = 0.0;       ///< the answer's folded share of its area
+  double normalDeviation = 0.0;  ///< the answer's RMS normal deviation (degrees)
 };
 
 /// The distances of a peer (Open CASCADE's loft through the same sections), measured by the

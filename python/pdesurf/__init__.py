@@ -178,10 +178,10 @@ def _check_rebuild_options(options):
 
 def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=None, tube=None,
             iterations=30, tolerance=1e-3, smoothness=1e-5, fit_samples=9, prevent_folds=False,
-            fold_weight=1e-5, fit_shape=False, frames=None, target_rms=None, quads=None,
-            crease_angle=None, resolution=17, samples=100000, axis="z", count=25, range=None,
-            near=None, track=False, modes=8, points=128, a=1.0, ends="natural", exact=False,
-            name=None, progress=None):
+            fold_weight=1e-5, fit_shape=False, frames=None, target_rms=None,
+            max_normal_deviation=None, quads=None, crease_angle=None, resolution=17,
+            samples=100000, axis="z", count=25, range=None, near=None, track=False, modes=8,
+            points=128, a=1.0, ends="natural", exact=False, name=None, progress=None):
     """Rebuilds a mesh as a model, as `pdesurf rebuild` does (the same library call) ->
     (model, report).
 
@@ -190,14 +190,15 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     disk-like mesh), layout=QUADS_FILE (one frame per quad) or tube=(RINGS, SECTORS) (the
     part chosen by axis, range, near, track), or, with none of them, the automatic layout of
     any mesh: about `frames` frames (default 200), or the smallest whose fitted model reaches
-    target_rms both ways (a fraction of the diagonal, 0.002, or a string '0.2%'), shaped by
-    quads ('pair' or 'split') and crease_angle (degrees, default 60); with iterations,
-    tolerance, smoothness, fit_samples, prevent_folds, fold_weight (--fold-weight),
-    fit_shape as the CLI's options; progress(iteration), if given, is called after each
-    iteration. kind="cross-sections" slices the mesh (axis, count, range, near, track), fits
-    each section by `modes` Fourier modes over `points` points and joins them by the C4
-    chain (a, ends: "natural" or "estimated", exact). The options are checked as the CLI
-    checks them: ValueError names the first that cannot be used.
+    target_rms both ways (a fraction of the diagonal, 0.002, or a string '0.2%') within
+    0.1 % folded and max_normal_deviation degrees of RMS normal deviation (default 10; 180:
+    no bound), shaped by quads ('pair' or 'split') and crease_angle (degrees, default 60);
+    with iterations, tolerance, smoothness, fit_samples, prevent_folds, fold_weight
+    (--fold-weight), fit_shape as the CLI's options; progress(iteration), if given, is
+    called after each iteration. kind="cross-sections" slices the mesh (axis, count, range,
+    near, track), fits each section by `modes` Fourier modes over `points` points and joins
+    them by the C4 chain (a, ends: "natural" or "estimated", exact). The options are checked
+    as the CLI checks them: ValueError names the first that cannot be used.
 
     report: "rms" (model -> mesh, mesh -> model), "mean", "max": relative to the mesh's (or
     the part's) bounding-box diagonal; "distances" (as compare's), "normals" (folded_area,
@@ -205,7 +206,8 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     seed's Table 1 convention); vertex frames also "frames", "iterations", "stop_reason";
     cross sections and tubes "part" (the mesh part measured against), cross sections
     "sections" and "part_storage_bytes"; the automatic layout "mesh_storage_bytes", and with
-    target_rms "target_reached", "rms_reached" and "trials".
+    target_rms "target_reached", "rms_reached", "folds_reached", "normals_reached" and
+    "trials".
     The GIL is released while fitting and measuring.
     """
     options = {key: value for key, value in locals().items()

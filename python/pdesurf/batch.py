@@ -35,8 +35,9 @@ COLUMNS = ("path", "status", "error", "method", "layout", "frames", "sections",
 # name one mesh's outputs: -o, --part, --name, --json, --quiet, --loft).
 REBUILD_OPTIONS = ("kind", "grid", "layout", "tube", "iterations", "tolerance", "smoothness",
                    "fit_samples", "prevent_folds", "fold_weight", "fit_shape", "frames",
-                   "target_rms", "quads", "crease_angle", "resolution", "samples", "axis",
-                   "count", "range", "near", "track", "modes", "points", "a", "ends", "exact")
+                   "target_rms", "max_normal_deviation", "quads", "crease_angle", "resolution",
+                   "samples", "axis", "count", "range", "near", "track", "modes", "points", "a",
+                   "ends", "exact")
 
 
 class UsageError(ValueError):
@@ -648,6 +649,7 @@ def parser():
     r.add_argument("--tube", type=int, nargs=2, metavar=("RINGS", "SECTORS"))
     r.add_argument("--frames", type=int, metavar="N")
     r.add_argument("--target-rms", metavar="X")
+    r.add_argument("--max-normal-deviation", type=float, metavar="DEGREES")
     r.add_argument("--quads", choices=("pair", "split"))
     r.add_argument("--crease-angle", type=float, metavar="DEGREES")
     r.add_argument("--iterations", type=int, default=30)

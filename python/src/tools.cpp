@@ -169,12 +169,21 @@ std::optional<std::array<std::uint32_t, 2>> pairKeyword(const py::dict& keywords
 /// rebuild's keywords (pdesurf.rebuild's, None: not given) as the library's options, checked
 /// as the CLI checks them (checkRebuildOptions, the messages in the keywords' spelling).
 RebuildOptions rebuildOptions(const py::dict& keywords, const std::string& source) {
-  static constexpr const char* kKeywords[] = {
-      "kind",       "grid",        "layout",        "tube",        "iterations", "tolerance",
-      "smoothness", "fit_samples", "prevent_folds", "fold_weight", "fit_shape",  "frames",
-      "target_rms", "quads",       "crease_angle",  "resolution",  "samples",    "axis",
-      "count",      "range",       "near",          "track",       "modes",      "points",
-      "a",          "ends",        "exact",         "name"};
+  static constexpr const char* kKeywords[] = {"kind",          "grid",
+                                              "layout",        "tube",
+                                              "iterations",    "tolerance",
+                                              "smoothness",    "fit_samples",
+                                              "prevent_folds", "fold_weight",
+                                              "fit_shape",     "frames",
+                                              "target_rms",    "max_normal_deviation",
+                                              "quads",         "crease_angle",
+                                              "resolution",    "samples",
+                                              "axis",          "count",
+                                              "range",         "near",
+                                              "track",         "modes",
+                                              "points",        "a",
+                                              "ends",          "exact",
+                                              "name"};
   for (const auto& [key, value] : keywords) {
     const std::string k = py::str(key);
     if (std::find_if(std::begin(kKeywords), std::end(kKeywords),
@@ -211,6 +220,8 @@ RebuildOptions rebuildOptions(const py::dict& keywords, const std::string& sourc
   }
   if (keywords.contains("crease_angle") && !keywords["crease_angle"].is_none())
     o.creaseAngle = keyword<double>(keywords, "crease_angle", 60.0);
+  if (keywords.contains("max_normal_deviation") && !keywords["max_normal_deviation"].is_none())
+    o.maxNormalDeviation = keyword<double>(keywords, "max_normal_deviation", kMaxNormalDeviation);
   o.fit.maxIterations = countKeyword(keywords, "iterations", o.fit.maxIterations);
   o.fit.tolerance = keyword<double>(keywords, "tolerance", o.fit.tolerance);
   o.fit.smoothness = keyword<double>(keywords, "smoothness", o.fit.smoothness);
@@ -293,7 +304,9 @@ py::dict reportDict(RebuildResult& result) {
   if (r.automatic) report["mesh_storage_bytes"] = r.referenceStorageBytes;
   if (r.search) {
     report["target_reached"] = r.search->reached;
-    report["rms_reached"] = r.search->rmsReached;
+    report["rms_reached"] = r.search->met.rms;
+    report["folds_reached"] = r.search->met.folds;
+    report["normals_reached"] = r.search->met.normals;
     report["trials"] = r.search->trials;
   }
   return report;

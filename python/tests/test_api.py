@@ -262,6 +262,24 @@ def test_rebuild_automatic_layout_is_the_cli_rebuild(choice, cgal_mesh, tmp_path
         assert f"({report['trials']} layout" in printed
 
 
+def test_rebuild_max_normal_deviation_is_the_cli_option(cgal_mesh, tmp_path):
+    # The normal bound of the target search: the keyword gives the CLI option's model, and
+    # the report says which of the target's criteria the model meets.
+    mesh = cgal_mesh("sphere.off")
+    out = tmp_path / "auto.json"
+    printed = cli("rebuild", mesh, "--as", "vertex-frames", "--target-rms", "0.5%",
+                  "--max-normal-deviation", 0, "--iterations", 4, "-o", out)
+    model, report = pdesurf.rebuild(mesh, iterations=4, target_rms="0.5%",
+                                    max_normal_deviation=0)
+    assert model.to_json() == out.read_text()
+    # No smooth model deviates 0° from the sphere's facets: the RMS and fold bounds are met,
+    # the normal bound is not, and the output says so.
+    assert report["rms_reached"] and report["folds_reached"]
+    assert not report["normals_reached"] and not report["target_reached"]
+    assert report["normals"]["rms_degrees"] > 0
+    assert "NOT the normal deviation of 0°" in printed
+
+
 def test_more_frames_fit_closer(cgal_mesh):
     peaks = pdesurf.read_mesh(cgal_mesh("three_peaks.off"))
     coarse = pdesurf.rebuild(peaks.vertices, peaks.triangles, grid=(2, 2), iterations=4)[1]

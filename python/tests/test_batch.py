@@ -238,6 +238,8 @@ def test_bad_options_exit_2_with_a_clear_error(collection, tmp_path, capsys):
                         (["--grid", "4", "4", "--frames", "10"], "not with layout, grid or tube"),
                         (["--timeout", "0"], "--timeout"),
                         (["--target-rms", "2%", "--frames", "9"], "give one of them"),
+                        (["--target-rms", "2%", "--max-normal-deviation", "-1"],
+                         "max_normal_deviation -1"),
                         (["--as", "spheres"], "invalid choice")):
         try:
             code = pdesurf_batch.main([str(collection), "-o", str(tmp_path / "o"), *args])

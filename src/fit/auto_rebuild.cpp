@@ -1,5 +1,6 @@
 // An automatic layout fitted and measured, and the search for the smallest one that reaches a
-// target RMS both ways within the fold bound (docs/rebuild.md, "A target accuracy").
+// target RMS both ways within the fold and normal-deviation bounds (docs/rebuild.md, "A
+// target accuracy").
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -25,27 +26,55 @@ AutoFit fitAutoLayout(const Mesh& mesh, const AutoLayoutOptions& layout, const F
   return out;
 }
 
+TargetCheck checkTarget(const AutoFit& f, const TargetSearchOptions& options) {
+  return {f.worseRms() <= options.targetRms, f.normals.foldedArea <= options.maxFoldedArea,
+          f.normals.rmsDegrees <= options.maxNormalDeviation};
+}
+
+namespace {
+
+/// How near a fit comes to the target: all three criteria met (3), the RMS within the fold
+/// bound (2), the RMS alone (1), none (0).
+int rank(const TargetCheck& c) {
+  if (c.all()) return 3;
+  return c.rms ? 1 + int(c.folds) : 0;
+}
+
+}  // namespace
+
 TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& options,
                              const std::string& source) {
   TargetSearch search;
-  auto rmsReached = [&](const AutoFit& f) { return f.worseRms() <= options.targetRms; };
-  auto foldFree = [&](const AutoFit& f) { return f.normals.foldedArea <= options.maxFoldedArea; };
-  auto reached = [&](const AutoFit& f) { return rmsReached(f) && foldFree(f); };
+  auto check = [&](const AutoFit& f) { return checkTarget(f, options); };
   auto frames = [](const AutoFit& f) { return f.layout.model.frames.size(); };
-  // Of two trials that miss, the closer: one that reaches the RMS (folding more than the
-  // bound) before one that does not; of two that reach it, the less folded; else the lower
-  // RMS.
+  // Of two fits, the closer to the target: the higher rank; of two within the RMS and fold
+  // bounds, the one of less normal deviation; of two within the RMS alone, the less folded;
+  // else the lower RMS; of two that reach the target, the smaller.
   auto closer = [&](const AutoFit& a, const AutoFit& b) {
-    if (rmsReached(a) != rmsReached(b)) return rmsReached(a);
-    return rmsReached(a) ? a.normals.foldedArea < b.normals.foldedArea
-                         : a.worseRms() < b.worseRms();
+    const int ra = rank(check(a)), rb = rank(check(b));
+    if (ra != rb) return ra > rb;
+    switch (ra) {
+      case 3:
+        return frames(a) < frames(b);
+      case 2:
+        return a.normals.rmsDegrees < b.normals.rmsDegrees;
+      case 1:
+        return a.normals.foldedArea < b.normals.foldedArea;
+      default:
+        return a.worseRms() < b.worseRms();
+    }
   };
-  // Every fit is kept if it is the smallest to reach both so far (`both`), or the closest.
-  std::optional<AutoFit> both, closest;
-  struct Outcome {
-    bool reached, rmsReached;  ///< the target (RMS within the fold bound), the RMS alone
-    std::size_t made;          ///< frames made
+  // What a trial found: its closer fit (plain or guarded), what that meets, the frames made,
+  // and the plain fit's normal deviation (which depends on the mesh and n alone).
+  struct Trial {
+    AutoFit fit;
+    TargetCheck met;
+    std::size_t made;
+    double deviation;
   };
+  // Every trial's fit is kept if it is the smallest to reach the target so far, or the
+  // closest.
+  std::optional<AutoFit> reached, closest;
   FitOptions guarded = options.fit;
   guarded.preventFolds = true;
   auto fit = [&](std::uint32_t n, bool prevent) {
@@ -56,20 +85,25 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
     f.foldsPrevented = prevent || options.fit.preventFolds;
     ++search.trials;
     if (options.onTrial) options.onTrial(n, f);
-    const Outcome out{reached(f), rmsReached(f), frames(f)};
-    if (out.reached && (!both || out.made < frames(*both))) both = f;
-    if (!closest || closer(f, *closest)) closest = std::move(f);
-    return out;
+    return f;
   };
-  // One trial of `n` frames: the plain fit, and where it reaches the RMS but folds, the same
-  // layout fitted again with the steps that fold more samples refused (FitOptions::
-  // preventFolds: a higher RMS, fewer folds). It reaches the target if either fit does. The
-  // outcome depends on n and the target alone, never on the trials before it.
+  // One trial of `n` frames: the plain fit, and where it reaches the RMS but folds beyond
+  // the bound, the same layout fitted again with the steps that fold more samples refused
+  // (FitOptions::preventFolds: a higher RMS, fewer folds). It reaches the target if either
+  // fit does. The outcome depends on n and the target alone, never on the trials before it.
   auto trial = [&](std::uint32_t n) {
-    Outcome out = fit(n, false);
-    if (!out.reached && out.rmsReached && !options.fit.preventFolds)
-      out.reached = fit(n, true).reached;
-    return out;
+    AutoFit plain = fit(n, false);
+    const TargetCheck c = check(plain);
+    Trial t{{}, c, frames(plain), plain.normals.rmsDegrees};
+    if (c.rms && !c.folds && !options.fit.preventFolds) {
+      AutoFit second = fit(n, true);
+      if (closer(second, plain)) std::swap(plain, second);
+      t.met = check(plain);
+    }
+    if (t.met.all() && (!reached || t.made < frames(*reached))) reached = plain;
+    if (!closest || closer(plain, *closest)) closest = plain;
+    t.fit = std::move(plain);
+    return t;
   };
   // Grow from the first count by `growth` until a trial reaches the target (or the layout
   // stops growing: the mesh is simplified no more). The counts tried depend on the mesh
@@ -78,38 +112,56 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   // never above a tighter one's.
   std::uint32_t miss = 0, hit = 0;
   std::uint32_t n = std::max(options.firstFrames, kFewestFrames);
-  std::uint32_t firstRms = 0;  // the first count that reached the RMS (folding beyond the bound)
-  std::size_t previous = 0;
+  std::uint32_t firstRms = 0;  // the first count that reached the RMS (missing a bound)
+  std::optional<Trial> previous;
+  std::optional<AutoFit> beforeStall;  // the trial before the deviation stalled
+  search.stop = TargetSearch::Stop::LayoutStopped;
   for (;;) {
-    const Outcome out = trial(n);
-    if (out.reached) {
+    Trial t = trial(n);
+    if (t.met.all()) {
       hit = n;
+      search.stop = TargetSearch::Stop::Reached;
       break;
     }
     // A layout that made more frames than asked for stands for every count up to them.
-    const auto stands = static_cast<std::uint32_t>(std::max<std::size_t>(n, out.made));
-    if (out.rmsReached && firstRms == 0) firstRms = stands;
+    const auto stands = static_cast<std::uint32_t>(std::max<std::size_t>(n, t.made));
+    if (t.met.rms && firstRms == 0) firstRms = stands;
     miss = stands;
-    if (out.made <= previous || n >= options.maxFrames) break;
-    previous = out.made;
+    if (previous && t.made <= previous->made) break;
+    // Within the RMS and fold bounds, but the deviation fell by less than kNormalStall a
+    // doubling: more frames will not bring it within its bound.
+    if (previous && t.met.rms && t.met.folds &&
+        t.deviation >
+            previous->deviation *
+                std::pow(1.0 - kNormalStall, std::log2(double(t.made) / double(previous->made)))) {
+      search.stop = TargetSearch::Stop::NormalsStalled;
+      const bool before = previous->met.rms && previous->met.folds;
+      beforeStall = std::move(before ? previous->fit : t.fit);
+      break;
+    }
+    if (n >= options.maxFrames) break;
     n = static_cast<std::uint32_t>(
         std::min<double>(options.maxFrames, std::ceil(stands * options.growth)));
-    if (firstRms > 0 && n > kFoldGrowthLimit * firstRms) break;
+    if (firstRms > 0 && n > kGrowthPastRms * firstRms) {
+      search.stop = TargetSearch::Stop::GrowthLimit;
+      break;
+    }
+    previous = std::move(t);
   }
   // Bisect (geometrically) between the largest count that missed and the smallest that
   // reached, until they are within `precision` of each other.
   while (hit > 0 && miss > 0 && hit > miss * (1.0 + options.precision)) {
     const auto mid = static_cast<std::uint32_t>(std::lround(std::sqrt(double(miss) * hit)));
     if (mid <= miss || mid >= hit) break;
-    const Outcome out = trial(mid);
-    if (out.reached)
+    const Trial t = trial(mid);
+    if (t.met.all())
       hit = mid;
     else
-      miss = static_cast<std::uint32_t>(std::clamp<std::size_t>(out.made, mid, hit - 1));
+      miss = static_cast<std::uint32_t>(std::clamp<std::size_t>(t.made, mid, hit - 1));
   }
-  search.best = std::move(both ? *both : *closest);
-  search.rmsReached = rmsReached(search.best);
-  search.reached = search.rmsReached && foldFree(search.best);
+  search.best = std::move(reached ? *reached : beforeStall ? *beforeStall : *closest);
+  search.met = check(search.best);
+  search.reached = search.met.all();
   search.missedBelow = miss;
   return search;
 }

@@ -31,6 +31,21 @@ AutoLayoutOptions autoLayoutOptions(const RebuildOptions& o) {
   return layout;
 }
 
+}  // namespace
+
+TargetSearchOptions targetSearchOptions(const RebuildOptions& o) {
+  TargetSearchOptions search;
+  search.targetRms = o.targetRms.value_or(0.0);
+  search.maxNormalDeviation = o.maxNormalDeviation.value_or(kMaxNormalDeviation);
+  search.layout = autoLayoutOptions(o);
+  search.fit = o.fit;
+  search.fit.onIteration = nullptr;  // one report a trial instead
+  search.resolution = o.resolution;
+  return search;
+}
+
+namespace {
+
 AutoLayoutReport layoutReport(const AutoLayout& a, std::uint32_t requested) {
   return {requested,    a.model.frames.size(), a.baseTriangles,
           a.components, a.creaseEdges,         a.skippedTriangles};
@@ -64,17 +79,20 @@ RebuildResult rebuildVertexFrames(const Mesh& mesh, const RebuildOptions& o,
   auto t0 = Clock::now();
   FitResult fitted;
   if (!o.grid && !o.tube && o.quadsPath.empty() && o.targetRms) {
-    TargetSearchOptions search;
-    search.targetRms = *o.targetRms;
-    search.layout = autoLayoutOptions(o);
-    search.fit = fit;
-    search.fit.onIteration = nullptr;  // one report a trial instead
-    search.resolution = o.resolution;
+    TargetSearchOptions search = targetSearchOptions(o);
     search.onTrial = progress.onTrial;
     TargetSearch s = searchTargetRms(mesh, search, o.source);
-    report.search = TargetSearchReport{
-        search.targetRms, search.maxFoldedArea,  s.reached,         s.rmsReached,
-        s.trials,         s.best.foldsPrevented, s.best.worseRms(), s.best.normals.foldedArea};
+    report.search = TargetSearchReport{search.targetRms,
+                                       search.maxFoldedArea,
+                                       search.maxNormalDeviation,
+                                       s.reached,
+                                       s.met,
+                                       s.stop,
+                                       s.trials,
+                                       s.best.foldsPrevented,
+                                       s.best.worseRms(),
+                                       s.best.normals.foldedArea,
+                                       s.best.normals.rmsDegrees};
     report.automatic = layoutReport(s.best.layout, search.layout.frames);
     fitted = std::move(s.best.fit);
   } else {

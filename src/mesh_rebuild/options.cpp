@@ -32,6 +32,7 @@ constexpr Spelling kSpellings[] = {
     {"target_rms", "--target-rms", "target_rms"},
     {"quads", "--quads", "quads"},
     {"crease_angle", "--crease-angle", "crease_angle"},
+    {"max_normal_deviation", "--max-normal-deviation", "max_normal_deviation"},
     {"iterations", "--iterations", "iterations"},
     {"tolerance", "--tolerance", "tolerance"},
     {"smoothness", "--smoothness", "smoothness"},
@@ -102,6 +103,13 @@ void checkVertexFrames(const RebuildOptions& o, const Checker& name) {
   if (o.frames != 0) name.inRange("frames", o.frames, 1u, 1000000u);
   if (o.targetRms) checkTarget(name, *o.targetRms, fmt::format("{}", *o.targetRms));
   if (o.creaseAngle) name.inRange("crease_angle", *o.creaseAngle, 0.0, 180.0);
+  if (o.maxNormalDeviation) {
+    if (!o.targetRms)
+      name.fail("max_normal_deviation",
+                fmt::format("{} bounds the search of {}: not without it",
+                            name("max_normal_deviation"), name("target_rms")));
+    name.inRange("max_normal_deviation", *o.maxNormalDeviation, 0.0, 180.0);
+  }
   if (o.grid) {
     name.inRange("grid", (*o.grid)[0], 1u, 1000u);
     name.inRange("grid", (*o.grid)[1], 1u, 1000u);

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "pdesurf/auto_layout.hpp"
@@ -90,7 +91,9 @@ TEST_F(CliRebuildAuto, ALayoutHeldAboveTheCountByCreasesSaysWhy) {
 TEST_F(CliRebuildAuto, TargetRmsSaysItReachedItAndWithHowManyFrames) {
   const CliRun r = run("rebuild torus.obj --as vertex-frames --target-rms 0.4% -o m.json");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_TRUE(contains(r.out, "target RMS 0.4% reached both ways within 0.1% folded with"))
+  EXPECT_TRUE(contains(r.out, fmt::format("target RMS 0.4% reached both ways within 0.1% folded "
+                                          "and {:g}° normal deviation with",
+                                          kMaxNormalDeviation)))
       << r.out;
   EXPECT_TRUE(contains(r.out, "trial: ")) << r.out;
   const VertexFrameModel m = loadVertexFrameModel(path("m.json"));
@@ -101,15 +104,32 @@ TEST_F(CliRebuildAuto, TargetRmsSaysItReachedItAndWithHowManyFrames) {
   const auto j = nlohmann::json::parse(c.out);
   for (const char* way : {"model_to_mesh", "mesh_to_model"})
     EXPECT_LE(j[way]["rms_relative"].get<double>(), kTarget * (1 + kSamplingSlack)) << way;
-  // ... and folded within the search's bound, as compare measures it.
+  // ... folded and deviating within the search's bounds, as compare measures them.
   EXPECT_LE(j["normals"]["folded_area"].get<double>(), kMaxFoldedArea);
+  EXPECT_LE(j["normals"]["rms_degrees"].get<double>(), kMaxNormalDeviation);
+}
+
+TEST_F(CliRebuildAuto, MaxNormalDeviationBoundsTheSearchAndTheOutputSaysWhetherItWasMet) {
+  // A bound no smooth model of the torus's facets meets (0°): the search reaches the RMS
+  // within the fold bound, says the normal bound was NOT reached and why, and still writes
+  // the closest model.
+  const CliRun r =
+      run("rebuild torus.obj --as vertex-frames --target-rms 0.4% --max-normal-deviation 0 -o "
+          "m.json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "deviates more than 0°")) << r.out;
+  EXPECT_TRUE(contains(r.out, "NOT the normal deviation of 0°")) << r.out;
+  EXPECT_TRUE(exists("m.json"));
 }
 
 TEST_F(CliRebuildAuto, UsageErrorsExitTwoAndWriteNothing) {
   for (const std::string& bad :
        {"--target-rms abc", "--target-rms 0", "--target-rms 150%", "--target-rms 1",
         "--frames 30 --target-rms 0.1", "--frames 30 --grid 2 2", "--target-rms 0.1 --tube 2 5",
-        "--quads split --grid 2 2", "--crease-angle 30 --grid 2 2", "--grid 2 2 --tube 2 5"}) {
+        "--quads split --grid 2 2", "--crease-angle 30 --grid 2 2", "--grid 2 2 --tube 2 5",
+        "--max-normal-deviation 5", "--target-rms 0.4% --max-normal-deviation -1",
+        "--target-rms 0.4% --max-normal-deviation nan",
+        "--target-rms 0.4% --max-normal-deviation 200"}) {
     SCOPED_TRACE(bad);
     const CliRun r = run("rebuild torus.obj --as vertex-frames " + bad + " -o m.json");
     EXPECT_EQ(r.code, 2) << r.err;
@@ -117,6 +137,19 @@ TEST_F(CliRebuildAuto, UsageErrorsExitTwoAndWriteNothing) {
   }
   const CliRun r = run("rebuild torus.obj --as vertex-frames --target-rms 2x -o m.json");
   EXPECT_TRUE(contains(r.err, "--target-rms 2x: not a number")) << r.err;
+  // The normal bound's errors name it.
+  for (const std::string& bad : {"-1", "nan"}) {
+    const CliRun n =
+        run("rebuild torus.obj --as vertex-frames --target-rms 0.4% "
+            "--max-normal-deviation " +
+            bad + " -o m.json");
+    EXPECT_TRUE(contains(n.err, "--max-normal-deviation " + bad + ": must be in [0, 180]"))
+        << n.err;
+  }
+  const CliRun alone =
+      run("rebuild torus.obj --as vertex-frames --max-normal-deviation 5 -o m.json");
+  EXPECT_TRUE(contains(alone.err, "--max-normal-deviation bounds the search of --target-rms"))
+      << alone.err;
 }
 
 TEST_F(CliRebuildAuto, BadMeshesExitOneWithTheReasonAndWriteNothing) {

@@ -2,6 +2,7 @@
 // report against the steps it is made of, measured independently.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,15 @@ TEST(RebuildOptions, DefaultsPassAndEachConflictIsNamedInTheFrontEndsSpelling) {
   both.targetRms = 0.01;
   EXPECT_EQ(refusal(both, RebuildOptionStyle::Python).second,
             "frames and target_rms both choose the number of frames: give one of them");
+
+  RebuildOptions normals;
+  normals.targetRms = 0.01;
+  normals.maxNormalDeviation = std::nan("");
+  EXPECT_EQ(refusal(normals, RebuildOptionStyle::Python).second,
+            "max_normal_deviation nan: must be in [0, 180]");
+  normals.targetRms.reset();
+  normals.maxNormalDeviation = 5.0;
+  EXPECT_EQ(refusal(normals, RebuildOptionStyle::Python).first, "max_normal_deviation");
 
   RebuildOptions weight;
   weight.fit.conformalWeight = -1.0;
