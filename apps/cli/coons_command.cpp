@@ -60,6 +60,8 @@ struct CoonsCommand {
       throw UsageError("coons: choose one of --bilinear, --tangents and --own-tangents");
     checkMeshExtension(outPath);
     AnyModel any = loadModel(modelPath);
+    // A type branch kept: the Coons baselines interpolate vertex-frame patches' own boundary
+    // curves and tangents, which no other method has.
     const auto* model = any.as<VertexFrameModel>();
     if (!model) throw UsageError(fmt::format("{}: coons takes a vertex-frames model", modelPath));
     const VertexFrameSurface surface = solve(*model, solveArgs.options(any).vertexFrames);

@@ -33,6 +33,7 @@ struct SpineCommand {
 
   int run() const {
     const SolvedModel solved = solve(loadModel(modelPath), modelPath);
+    // A type branch kept: a spine (the curve of A0) is spectral patches' own.
     if (!solved.spectral())
       throw UsageError(fmt::format(
           "{}: only spectral and cross-sections models have a spine (this is a {} model)",

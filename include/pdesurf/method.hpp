@@ -1,7 +1,8 @@
 // Surface methods: one description per method (vertex frames, spectral, cross-sections,
 // B-spline PDE, or one a program registers) that holds everything pdesurf does with a model
-// of that method: its type name, parse, serialise, solve, transform, report, edits. The registry
-// finds a description by the "type" of a model file or by the C++ type of a model value.
+// of that method: its type name, parse, serialise, solve, transform, report, info, edits.
+// The registry finds a description by the "type" of a model file or by the C++ type of a model
+// value.
 // docs/architecture.md says where the descriptions live and how a method is added.
 #pragma once
 
@@ -23,6 +24,8 @@
 #include "pdesurf/transform.hpp"
 
 namespace pdesurf {
+
+struct ModelInfo;  // model_info.hpp
 
 /// A model as an editing session (session.hpp: ModelSession) holds it: the model, its
 /// solution (null while it is not solved) and, for vertex frames, the frame topology its
@@ -191,9 +194,11 @@ class SurfaceMethod {
 
   /// What `build` reports. The default: the patch count and the largest C0 gap.
   virtual ModelReport report(const SolvedModel& solved) const;
-  /// `info`, as text or as JSON. The default: the model, its name, patch count, C0 gap and
-  /// the bounding box of a sample.
-  virtual std::string info(const SolvedModel& solved, bool json) const;
+  /// What `info` tells (model_info.hpp: ModelInfo): the method's facts, each a value with
+  /// its label and JSON key, in the order a listing shows them; modelInfo adds the source and
+  /// the name. The default: the type, the patch count, the largest C0 gap and the bounding
+  /// box of a sample.
+  virtual ModelInfo info(const SolvedModel& solved) const;
 
   /// Parses and validates an edit of `model` from its JSON ({"op": ..., "group": ...}, the
   /// fields of the op: docs/studio.md). Errors are ModelError with source "edit" and the

@@ -94,8 +94,8 @@ struct PatchSamples {
 
 /// A model's defining curves as polylines: spectral position curves and B-spline control
 /// polygons (`curves`), and spectral patches' spines (`spines`). Empty for vertex frames,
-/// whose frames are the model itself. (The studio draws them over a model it does not edit,
-/// apps/studio/document.cpp.)
+/// whose frames are the model itself. Geometry a viewer may draw over the surface to show
+/// what defines it (the studio does).
 struct ModelOverlay {
   std::vector<std::vector<Vec3>> curves, spines;
 };
@@ -116,7 +116,7 @@ struct SampleOptions {
   std::uint32_t grid = 17;
 };
 
-/// What `build` and `info` report of a solved model.
+/// What `build` reports of a solved model (`info`'s values: model_info.hpp).
 struct ModelReport {
   std::string summary;  ///< "3 frames, 2 strips" / "spectral, order 12, …" / "bspline-pde, …"
   std::string quality;  ///< "C0 gap 0" / "condition error 1e-15" / "PDE residual 3e-16"
@@ -260,8 +260,6 @@ class ModelTessellator {
 std::vector<PatchSamples> sample(const SolvedModel& solved, const SampleOptions& options = {});
 
 ModelReport report(const SolvedModel& solved);
-/// `info`: counts, quality figures, bounding box and storage, as text or as JSON.
-std::string infoText(const SolvedModel& solved, bool json);
 /// The largest distance between two patches where they should meet (absolute), 0 for a
 /// single patch: the studio's X-C0-Gap.
 double largestC0Gap(const SolvedModel& solved);

@@ -25,6 +25,7 @@
 // Any model: solved, tessellated, sampled, transformed.
 #include "pdesurf/method.hpp"
 #include "pdesurf/model.hpp"
+#include "pdesurf/model_info.hpp"
 #include "pdesurf/transform.hpp"
 
 // Files and sessions.

@@ -129,10 +129,10 @@ VertexFrameModel restructure(const VertexFrameModel& model, const FrameTopology&
 /// studio maps points picked on the surface mesh to parameters: force regions drawn by hand).
 std::array<double, 2> nearestParameters(const VertexFramePatch& patch, const Vec3& point);
 
-/// A new vertex-frame model on a lattice: one frame, a grid of u × v frames, or a tube of u
-/// frames round the z axis and v along it; square frames of side `size` in z = 0 (the grid)
-/// or round z (the tube, of circumference u × size). (The studio's "new model" asks for one,
-/// parseNewModel reading its request.)
+/// A starter vertex-frame model on a lattice: one frame, a grid of u × v frames, or a tube
+/// of u frames round the z axis and v along it; square frames of side `size` in z = 0 (the
+/// grid) or round z (the tube, of circumference u × size). (edit_io.hpp: parseNewModel reads
+/// these options from JSON, as the studio's "new model" sends them.)
 struct NewModelOptions {
   enum class Kind { Single, Grid, Tube } kind = Kind::Single;
   std::uint32_t u = 1, v = 1;

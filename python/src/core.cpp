@@ -29,6 +29,7 @@
 #include "pdesurf/error.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/mesh_slice.hpp"
+#include "pdesurf/model_info.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/nurbs.hpp"
 #include "pdesurf/rebuild.hpp"
@@ -103,6 +104,8 @@ std::string jsonText(const py::object& value, const char* name) {
                         py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
 }
 
+// A type branch kept: the Python properties of vertex frames (vertices, frames, a1, a2) are
+// that method's own data.
 const VertexFrameModel& framesOf(const Model& model) {
   const auto* frames = model.model->as<VertexFrameModel>();
   if (!frames)
@@ -579,7 +582,15 @@ void bindCore(py::module_& m) {
       .def(
           "info",
           [](const SolvedModel& self) {
-            return py::module_::import("json").attr("loads")(infoText(self, true));
+            // The values of `pdesurf info --json` (model_info.hpp), each through JSON text.
+            const ModelInfo info = modelInfo(self);
+            const py::object loads = py::module_::import("json").attr("loads");
+            py::dict out(py::arg("model") = info.source, py::arg("name") = info.name);
+            for (const InfoFact& fact : info.facts)
+              if (!fact.key.empty()) out[py::str(fact.key)] = loads(fact.value.dump());
+            if (info.keysSorted)
+              out = py::dict(py::module_::import("builtins").attr("sorted")(out.attr("items")()));
+            return out;
           },
           "What `pdesurf info --json` prints, as a dict.")
       .def_property_readonly(

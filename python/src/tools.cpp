@@ -401,6 +401,7 @@ void bindTools(py::module_& m) {
       [](const py::object& value) -> std::size_t {
         if (py::isinstance<Mesh>(value)) return storageBytes(value.cast<const Mesh&>());
         const Model& model = value.cast<const Model&>();
+        // Type branches kept: only these two methods have a storage measure (storageBytes).
         if (const auto* f = model.model->as<VertexFrameModel>()) return storageBytes(*f);
         if (const auto* c = model.model->as<CrossSectionModel>()) return storageBytes(*c);
         badArgument("model", "storage is counted for vertex-frames and cross-sections models");

@@ -51,6 +51,15 @@ def test_sample_is_the_cli_sample(name):
 
 
 @pytest.mark.parametrize("name", ONE_OF_EACH)
+def test_info_is_the_cli_info(name):
+    path = ROOT / "examples" / name
+    info = pdesurf.load(path).solve().info()
+    printed = cli_json("info", path, "--json")
+    assert info == printed
+    assert list(info) == list(printed)  # the same members in the same order
+
+
+@pytest.mark.parametrize("name", ONE_OF_EACH)
 def test_evaluate_meets_sample_and_its_derivatives(name):
     surface = pdesurf.load(ROOT / "examples" / name).solve()
     grid = 4

@@ -70,7 +70,8 @@ std::vector<Vec3> sampleGrid(std::uint32_t n, F&& f) {
 }
 
 /// A solved surface whose patches are the list `T::*Patches` (vertex-frame patches, B-spline
-/// pieces), each on the unit square with evaluate() and position().
+/// pieces), each on the unit square with evaluate() and position(), tessellated by the
+/// engine's tessellate(const T&, const TessellateOptions&).
 template <class T, auto Patches>
 class UnitSquarePatches : public SolvedSurfaceOf<T> {
  public:
@@ -80,6 +81,10 @@ class UnitSquarePatches : public SolvedSurfaceOf<T> {
   PatchDomain domain(std::size_t) const override { return {}; }
   SurfacePoint evaluate(std::size_t patch, double u, double v) const override {
     return patches()[patch].evaluate(u, v);
+  }
+  /// The engine's own mesh of the solved value (pdesurf::tessellate of a `T`).
+  Mesh tessellate(const TessellateOptions& options) const override {
+    return pdesurf::tessellate(this->value_, options);
   }
   /// Each patch on a grid × grid lattice of its unit square.
   std::vector<PatchSamples> sample(const SampleOptions& options) const override {

@@ -1,19 +1,18 @@
-// The spectral and B-spline PDE methods' report() and info() (method.hpp), private to
-// src/methods/.
+// The spectral and B-spline PDE methods' report() and info() (method.hpp: what `build`
+// reports, the values `info` tells), private to src/methods/.
 #pragma once
 
 #include <string>
 
 #include "pdesurf/model.hpp"
+#include "pdesurf/model_info.hpp"
 
 namespace pdesurf::detail {
 
 ModelReport spectralReport(const SolvedSpectral& solved);
-std::string spectralInfo(const SolvedSpectral& solved, const std::string& path,
-                         const std::string& name, bool json);
+ModelInfo spectralInfo(const SolvedSpectral& solved);
 
 ModelReport bsplineReport(const SolvedBSplinePde& solved);
-std::string bsplineInfo(const BSplinePdeModel& model, const SolvedBSplinePde& solved,
-                        const std::string& path, bool json);
+ModelInfo bsplineInfo(const BSplinePdeModel& model, const SolvedBSplinePde& solved);
 
 }  // namespace pdesurf::detail

@@ -1,12 +1,14 @@
-// report() and infoText() of the model layer (include/pdesurf/model.hpp) through the model's
-// method, and the SurfaceMethod defaults (method.hpp) a method without its own report takes;
-// the built-in methods' reports are in src/methods/.
+// report() (include/pdesurf/model.hpp) and modelInfo() (model_info.hpp) of the model layer
+// through the model's method, and the SurfaceMethod defaults (method.hpp) a method without its
+// own report or info takes; the built-in methods' are in src/methods/. The info's listing and
+// JSON are the front ends' (apps/cli/info_command.cpp).
 #include <cmath>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "pdesurf/method.hpp"
+#include "pdesurf/model_info.hpp"
 
 namespace pdesurf {
 
@@ -18,8 +20,25 @@ std::string countText(std::size_t n, const std::string& noun) {
 
 ModelReport report(const SolvedModel& solved) { return solved.model().method().report(solved); }
 
-std::string infoText(const SolvedModel& solved, bool json) {
-  return solved.model().method().info(solved, json);
+ModelInfo modelInfo(const SolvedModel& solved) {
+  const SurfaceMethod& method = solved.model().method();
+  ModelInfo info = method.info(solved);
+  info.source = solved.source();
+  info.name = method.name(solved.model());
+  return info;
+}
+
+const InfoFact* ModelInfo::find(std::string_view key) const {
+  for (const InfoFact& fact : facts)
+    if (fact.key == key) return &fact;
+  return nullptr;
+}
+
+InfoFact boxFact(const Vec3& min, const Vec3& max) {
+  return {"bbox", "bbox",
+          nlohmann::ordered_json{{"min", {min.x(), min.y(), min.z()}},
+                                 {"max", {max.x(), max.y(), max.z()}}},
+          ""};
 }
 
 ModelReport SurfaceMethod::report(const SolvedModel& solved) const {
@@ -27,7 +46,7 @@ ModelReport SurfaceMethod::report(const SolvedModel& solved) const {
           fmt::format("C0 gap {:.3g}", solved.surface().largestC0Gap())};
 }
 
-std::string SurfaceMethod::info(const SolvedModel& solved, bool json) const {
+ModelInfo SurfaceMethod::info(const SolvedModel& solved) const {
   // The box of the samples at this many per patch side.
   constexpr std::uint32_t kInfoBoxSamples = 33;
   const SolvedSurface& surface = solved.surface();
@@ -37,25 +56,12 @@ std::string SurfaceMethod::info(const SolvedModel& solved, bool json) const {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-  const std::string& name = this->name(solved.model());
-  const double gap = surface.largestC0Gap();
-  if (json) {
-    const nlohmann::ordered_json j = {
-        {"model", solved.source()},
-        {"name", name},
-        {"type", typeName()},
-        {"patches", surface.patchCount()},
-        {"c0_gap", gap},
-        {"bbox", {{"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}}}};
-    return j.dump(2) + "\n";
-  }
-  std::string out;
-  out += fmt::format("model      {}{}\n", solved.source(), name.empty() ? "" : " (" + name + ")");
-  out += fmt::format("type       {}\npatches    {}\nC0 gap     {}\n", typeName(),
-                     surface.patchCount(), gap);
-  out += fmt::format("bbox       [{}, {}, {}] to [{}, {}, {}]\n", lo.x(), lo.y(), lo.z(), hi.x(),
-                     hi.y(), hi.z());
-  return out;
+  ModelInfo info;
+  info.facts = {{"type", "type", typeName(), ""},
+                {"patches", "patches", surface.patchCount(), ""},
+                {"C0 gap", "c0_gap", surface.largestC0Gap(), ""},
+                boxFact(lo, hi)};
+  return info;
 }
 
 }  // namespace pdesurf

@@ -6,6 +6,7 @@
 
 #include "pdesurf/method.hpp"
 #include "pdesurf/model.hpp"
+#include "pdesurf/model_info.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 #include "support/examples.hpp"
@@ -50,9 +51,15 @@ TEST(Model, EveryExampleSolvesTessellatesAndSamplesThroughOneType) {
     const ModelReport r = report(solved);
     EXPECT_FALSE(r.summary.empty());
     EXPECT_FALSE(r.quality.empty());
-    // Every type's info names the model's file, as text and as JSON.
-    EXPECT_NE(infoText(solved, false).find(path), std::string::npos);
-    EXPECT_NE(infoText(solved, true).find("\"model\""), std::string::npos);
+    // Every type's info names the model's file and its box, every fact shown somewhere (a
+    // listing's label or a JSON key), the box's corners in order.
+    const ModelInfo info = modelInfo(solved);
+    EXPECT_EQ(info.source, path);
+    for (const InfoFact& fact : info.facts) EXPECT_FALSE(fact.label.empty() && fact.key.empty());
+    const InfoFact* box = info.find("bbox");
+    ASSERT_NE(box, nullptr);
+    for (std::size_t i = 0; i < 3; ++i)
+      EXPECT_LE(box->value["min"][i].get<double>(), box->value["max"][i].get<double>());
     // The NURBS faces cover every patch: one face per patch at least.
     EXPECT_GE(toNurbs(solved).faces.size(), solved.frames() ? solved.frames()->patches.size() : 1);
   }

@@ -3,9 +3,11 @@
 // here in the test tree only. Parse, solve, tessellate, sample, serialise, info, NURBS
 // faces, a session's whole-model transform with undo, an edit of the toy's own kind through
 // the session's one edit path (parsed from JSON, applied, undone), and the CLI's build, info,
-// sample and export (run in-process) all work on it with no library or CLI file knowing it.
+// sample and export (run in-process) all work on it with no library or CLI file knowing it
+// (NoFileOutsideTheTestTreeNamesIt).
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "pdesurf/error.hpp"
 #include "pdesurf/mesh_io.hpp"
 #include "pdesurf/method.hpp"
+#include "pdesurf/model_info.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 #include "support/cli_run.hpp"
@@ -235,10 +238,13 @@ TEST(ToyMethod, SolvesTessellatesSamplesAndWritesBack) {
 
   // The default report and info (the method gives none of its own).
   EXPECT_EQ(report(solved).summary, "bilinear-coons, 2 patches");
-  const auto info = nlohmann::json::parse(infoText(solved, true));
-  EXPECT_EQ(info.at("patches"), 2);
-  EXPECT_EQ(info.at("name"), "toy");
-  EXPECT_EQ(info.at("bbox").at("max"), nlohmann::json::parse("[2.0, 1.0, 1.0]"));
+  const ModelInfo info = modelInfo(solved);
+  EXPECT_EQ(info.source, "toy.json");
+  EXPECT_EQ(info.name, "toy");
+  ASSERT_NE(info.find("patches"), nullptr);
+  EXPECT_EQ(info.find("patches")->value, 2);
+  ASSERT_NE(info.find("bbox"), nullptr);
+  EXPECT_EQ(info.find("bbox")->value.at("max"), nlohmann::ordered_json::parse("[2.0, 1.0, 1.0]"));
 }
 
 TEST(ToyMethod, SessionTransformsAndUndoes) {
@@ -306,6 +312,8 @@ TEST(ToyMethod, CliBuildsInformsSamplesAndExports) {
   std::string out;
   ASSERT_EQ(runPdesurf({"info", model, "--json"}, &out), 0);
   EXPECT_EQ(nlohmann::json::parse(out).at("type"), "bilinear-coons");
+  ASSERT_EQ(runPdesurf({"info", model}, &out), 0);
+  EXPECT_NE(out.find("\ntype       bilinear-coons\npatches    2\n"), std::string::npos) << out;
 
   ASSERT_EQ(runPdesurf({"sample", model, "--grid", "3"}, &out), 0);
   const auto sampled = nlohmann::json::parse(out).at("patches");
@@ -314,6 +322,23 @@ TEST(ToyMethod, CliBuildsInformsSamplesAndExports) {
 
   ASSERT_EQ(runPdesurf({"export", model, "-o", work.file("toy.step"), "-q"}), 0);
   EXPECT_NE(testing::readText(work.file("toy.step")).find("B_SPLINE_SURFACE"), std::string::npos);
+}
+
+TEST(ToyMethod, NoFileOutsideTheTestTreeNamesIt) {
+  // The proof holds only while the library, the apps and the Python package know nothing of
+  // the toy: neither its type name nor its model's C++ name appears in their sources (a
+  // comment may point at this file).
+  const std::filesystem::path root(PDESURF_SOURCE_DIR);
+  std::size_t read = 0;
+  for (const char* folder : {"include", "src", "apps", "python/src", "python/pdesurf"})
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root / folder)) {
+      if (!entry.is_regular_file()) continue;
+      const std::string text = testing::readText(entry.path().string());
+      ++read;
+      for (const char* name : {"bilinear-coons", "CoonsToy"})
+        EXPECT_EQ(text.find(name), std::string::npos) << entry.path() << " names " << name;
+    }
+  EXPECT_GT(read, 100u);  // the folders were found and read
 }
 
 }  // namespace

@@ -89,10 +89,7 @@ void addTangentRow(ModelHandles& out, const char* name, const TangentCurve& tang
   addTangents(out, ref, at, base, false);
 }
 
-}  // namespace
-
-CurveTarget ShapeEditsOf<BSplinePdeModel>::curve(BSplinePdeModel& m, const CurveRef& ref,
-                                                 const std::string& path) {
+CurveTarget bsplineCurve(BSplinePdeModel& m, const CurveRef& ref, const std::string& path) {
   const ModelReader rd("edit");
   if (m.form == Form::Boundary) {
     BoundaryInput& b = m.boundary;
@@ -128,8 +125,8 @@ CurveTarget ShapeEditsOf<BSplinePdeModel>::curve(BSplinePdeModel& m, const Curve
   rd.fail(path, "the net form has no curves: move its control points (move-control-points)");
 }
 
-ShapeEdit ShapeEditsOf<BSplinePdeModel>::parseOwnEdit(std::string_view, const ModelReader& rd,
-                                                      const Json& doc, const BSplinePdeModel& m) {
+ShapeEdit parseBSplineEdit(std::string_view, const ModelReader& rd, const Json& doc,
+                           const BSplinePdeModel& m) {
   // move-control-points
   onlyMembers(rd, doc, {"points", "positions"});
   if (m.form != Form::Net)
@@ -157,15 +154,15 @@ ShapeEdit ShapeEditsOf<BSplinePdeModel>::parseOwnEdit(std::string_view, const Mo
   return e;
 }
 
-void ShapeEditsOf<BSplinePdeModel>::applyOwnEdit(BSplinePdeModel& m, const SolvedModel&,
-                                                 const ShapeEdit& edit) {
+void applyBSplineEdit(BSplinePdeModel& m, const SolvedModel&, const ShapeEdit& edit) {
   const auto& e = std::get<MoveControlPoints>(edit);
   for (std::size_t k = 0; k < e.points.size(); ++k)
     m.net(e.points[k][0], e.points[k][1]) = e.positions[k];
 }
 
-void ShapeEditsOf<BSplinePdeModel>::afterCurveEdit(const BSplinePdeModel& model,
-                                                   BSplinePdeModel& after) {
+/// Corners stay shared: every curve end that sat where a moved end of a curve sat (another
+/// curve's corner, a closed curve's other end) moves with it.
+void keepCornersShared(const BSplinePdeModel& model, BSplinePdeModel& after) {
   BSplinePdeModel before = model;
   const auto was = cornerCurves(before), now = cornerCurves(after);
   std::vector<std::pair<Vec3, Vec3>> moves;  // (where an end was, where it is)
@@ -182,7 +179,7 @@ void ShapeEditsOf<BSplinePdeModel>::afterCurveEdit(const BSplinePdeModel& model,
           (last ? now[c]->back() : now[c]->front()) = to;
 }
 
-std::vector<Vec3> ShapeEditsOf<BSplinePdeModel>::reachPoints(const BSplinePdeModel& m) {
+std::vector<Vec3> bsplineReachPoints(const BSplinePdeModel& m) {
   std::vector<Vec3> out;
   for (const Vec3& p : m.net.points)
     if (p.allFinite()) out.push_back(p);  // the inner points are NaN: solved
@@ -191,7 +188,10 @@ std::vector<Vec3> ShapeEditsOf<BSplinePdeModel>::reachPoints(const BSplinePdeMod
   return out;
 }
 
-ModelHandles ShapeEditsOf<BSplinePdeModel>::handles(const BSplinePdeModel& m, const SolvedModel&) {
+/// Its curves' points (the boundary's sides and second rows, a blend's curves), a tangent
+/// row's tips (drawn from the side they leave, at their parameters on it) and a net's given
+/// control points (rows 0, 1, n_u and columns 0, 1, n_v).
+ModelHandles bsplineHandles(const BSplinePdeModel& m, const SolvedModel&) {
   ModelHandles out;
   const auto named = [&](const char* name, const std::vector<Vec3>& points) {
     addCurve(out, CurveRef{0, name}, name, &points, Vec3::Zero(), false);
@@ -224,5 +224,23 @@ ModelHandles ShapeEditsOf<BSplinePdeModel>::handles(const BSplinePdeModel& m, co
         }
   return out;
 }
+
+/// No operator to set; its overlay: control nets.
+ModelSettings bsplineSettings(const BSplinePdeModel&) { return {{}, {}, "Control nets"}; }
+
+constexpr const char* kOps[] = {"move-control-points"};
+
+}  // namespace
+
+// Corners stay shared after a curve edit (keepCornersShared); no drag advice.
+constinit const ShapeEditsOf<BSplinePdeModel> kBSplinePdeEdits = {kOps,
+                                                                  bsplineCurve,
+                                                                  parseBSplineEdit,
+                                                                  applyBSplineEdit,
+                                                                  keepCornersShared,
+                                                                  bsplineReachPoints,
+                                                                  nullptr,
+                                                                  bsplineHandles,
+                                                                  bsplineSettings};
 
 }  // namespace pdesurf::detail

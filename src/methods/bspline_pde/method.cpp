@@ -19,9 +19,6 @@ class SolvedBSplineSurface final
  public:
   using UnitSquarePatches::UnitSquarePatches;
 
-  Mesh tessellate(const TessellateOptions& options) const override {
-    return pdesurf::tessellate(value_, options);
-  }
   std::vector<PatchSamples> sample(const SampleOptions& options) const override {
     std::vector<PatchSamples> out = UnitSquarePatches::sample(options);
     for (std::size_t k = 0; k < out.size(); ++k)
@@ -57,14 +54,16 @@ class BSplinePdeMethod final
     : public ShapeEditedMethod<
           OptionlessMethod<BSplinePdeModel, SolvedBSplinePde, SolvedBSplineSurface>> {
  public:
-  BSplinePdeMethod() : ShapeEditedMethod("bspline-pde", parseBSplinePdeDocument, pdesurf::solve) {}
+  BSplinePdeMethod()
+      : ShapeEditedMethod(kBSplinePdeEdits, "bspline-pde", parseBSplinePdeDocument,
+                          pdesurf::solve) {}
 
   ModelReport report(const SolvedModel& solved) const override {
     return bsplineReport(solved.surface().get<SolvedBSplinePde>());
   }
-  std::string info(const SolvedModel& solved, bool json) const override {
+  ModelInfo info(const SolvedModel& solved) const override {
     return bsplineInfo(solved.model().get<BSplinePdeModel>(),
-                       solved.surface().get<SolvedBSplinePde>(), solved.source(), json);
+                       solved.surface().get<SolvedBSplinePde>());
   }
 };
 

@@ -7,12 +7,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "pdesurf/model_info.hpp"
+
 namespace pdesurf::detail {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-Json pointJson(const Vec3& p) { return Json::array({p.x(), p.y(), p.z()}); }
 
 const char* knotName(KnotType k) { return k == KnotType::Clamped ? "clamped" : "uniform"; }
 
@@ -42,10 +42,8 @@ ModelReport bsplineReport(const SolvedBSplinePde& solved) {
   return r;
 }
 
-std::string bsplineInfo(const BSplinePdeModel& model, const SolvedBSplinePde& solved,
-                        const std::string& path, bool json) {
+ModelInfo bsplineInfo(const BSplinePdeModel& model, const SolvedBSplinePde& solved) {
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  std::size_t points = 0;
   for (const BSplineSurface& s : solved.pieces) {
     // A B-spline surface lies in the convex hull of its net; the box of a dense sample is
     // the surface's own.
@@ -56,50 +54,39 @@ std::string bsplineInfo(const BSplinePdeModel& model, const SolvedBSplinePde& so
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
       }
-    points += s.net().points.size();
   }
   const BSplineSurface& first = solved.pieces.front();
   const double residual = worstResidual(solved);
-  if (json) {
-    Json j = {
-        {"model", path},
-        {"name", model.name},
-        {"type", "bspline-pde"},
-        {"form", formName(model.form)},
-        {"pieces", solved.pieces.size()},
-        {"control_points", {first.net().nu + 1, first.net().nv + 1}},
-        {"knots", {{"u", knotName(first.uKnotType())}, {"v", knotName(first.vKnotType())}}},
-        {"unknowns", std::size_t{first.net().nu - 2} * (first.net().nv - 2) * solved.pieces.size()},
-        {"pde_residual", residual}};
-    if (solved.c1Gap) {
-      j["c1_gap_relative"] = *solved.c1Gap;
-      Json seams = Json::array();
-      for (const auto& [where, gap] : solved.seamGaps)
-        seams.push_back({{"seam", where}, {"c1_gap_relative", gap}});
-      j["seams"] = std::move(seams);
-      j["constraint_residual_relative"] = *solved.constraintResidual;
-      j["closed"] = solved.closedV;
-    }
-    j["bbox"] = {{"min", pointJson(lo)}, {"max", pointJson(hi)}};
-    return j.dump(2) + "\n";
-  }
-  std::string out;
-  out += fmt::format("model      {}{}\n", path, model.name.empty() ? "" : " (" + model.name + ")");
-  out += fmt::format("type       bspline-pde ({})\n", formName(model.form));
-  out += fmt::format("pieces     {}{}, {} x {} control points{}, {}\n", solved.pieces.size(),
-                     solved.closedV ? " (closed in v)" : "", first.net().nu + 1, first.net().nv + 1,
-                     solved.pieces.size() == 1 ? "" : " each", knotsText(first));
-  out += fmt::format("PDE        largest |x_uuuvvv| {:.3g} (relative to its terms)\n", residual);
+  ModelInfo info;
+  info.facts = {
+      {"type", "type", "bspline-pde", fmt::format("bspline-pde ({})", formName(model.form))},
+      {"", "form", formName(model.form), ""},
+      {"pieces", "pieces", solved.pieces.size(),
+       fmt::format("{}{}, {} x {} control points{}, {}", solved.pieces.size(),
+                   solved.closedV ? " (closed in v)" : "", first.net().nu + 1, first.net().nv + 1,
+                   solved.pieces.size() == 1 ? "" : " each", knotsText(first))},
+      {"", "control_points", Json::array({first.net().nu + 1, first.net().nv + 1}), ""},
+      {"", "knots", {{"u", knotName(first.uKnotType())}, {"v", knotName(first.vKnotType())}}, ""},
+      {"", "unknowns",
+       std::size_t{first.net().nu - 2} * (first.net().nv - 2) * solved.pieces.size(), ""},
+      {"PDE", "pde_residual", residual,
+       fmt::format("largest |x_uuuvvv| {:.3g} (relative to its terms)", residual)}};
   if (solved.c1Gap) {
+    Json seams = Json::array();
     std::string perSeam;
-    for (const auto& [where, gap] : solved.seamGaps)
+    for (const auto& [where, gap] : solved.seamGaps) {
+      seams.push_back({{"seam", where}, {"c1_gap_relative", gap}});
       perSeam += fmt::format("{}{}: {:.3g}", perSeam.empty() ? "" : ", ", where, gap);
-    out += fmt::format("seams      C1 gap {:.3g} (relative; {}), constraint residual {:.3g}\n",
-                       *solved.c1Gap, perSeam, *solved.constraintResidual);
+    }
+    info.facts.push_back({"seams", "c1_gap_relative", *solved.c1Gap,
+                          fmt::format("C1 gap {:.3g} (relative; {}), constraint residual {:.3g}",
+                                      *solved.c1Gap, perSeam, *solved.constraintResidual)});
+    info.facts.push_back({"", "seams", std::move(seams), ""});
+    info.facts.push_back({"", "constraint_residual_relative", *solved.constraintResidual, ""});
+    info.facts.push_back({"", "closed", solved.closedV, ""});
   }
-  out += fmt::format("bbox       [{}, {}, {}] to [{}, {}, {}]\n", lo.x(), lo.y(), lo.z(), hi.x(),
-                     hi.y(), hi.z());
-  return out;
+  info.facts.push_back(boxFact(lo, hi));
+  return info;
 }
 
 }  // namespace pdesurf::detail

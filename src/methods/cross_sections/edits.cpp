@@ -38,10 +38,7 @@ std::size_t pointCount(const CurveInput& c) {
   return points ? points->size() : 0;
 }
 
-}  // namespace
-
-CurveTarget ShapeEditsOf<CrossSectionModel>::curve(CrossSectionModel& m, const CurveRef& ref,
-                                                   const std::string& path) {
+CurveTarget sectionCurve(CrossSectionModel& m, const CurveRef& ref, const std::string& path) {
   const ModelReader rd("edit");
   if (!ref.name.empty()) rd.fail(path, "a chain's sections are numbered");
   if (ref.index >= m.curves.size())
@@ -50,9 +47,8 @@ CurveTarget ShapeEditsOf<CrossSectionModel>::curve(CrossSectionModel& m, const C
   return {&m.curves[ref.index], nullptr, false, fmt::format("$.curves[{}]", ref.index)};
 }
 
-ShapeEdit ShapeEditsOf<CrossSectionModel>::parseOwnEdit(std::string_view op, const ModelReader& rd,
-                                                        const Json& doc,
-                                                        const CrossSectionModel& m) {
+ShapeEdit parseSectionEdit(std::string_view op, const ModelReader& rd, const Json& doc,
+                           const CrossSectionModel& m) {
   if (op == "set-operator") return parseSetOperator(rd, doc, false);
   const std::size_t count = m.curves.size();
   if (op == "remove-section") {
@@ -73,8 +69,7 @@ ShapeEdit ShapeEditsOf<CrossSectionModel>::parseOwnEdit(std::string_view op, con
   return e;
 }
 
-void ShapeEditsOf<CrossSectionModel>::applyOwnEdit(CrossSectionModel& m, const SolvedModel& solved,
-                                                   const ShapeEdit& edit) {
+void applySectionEdit(CrossSectionModel& m, const SolvedModel& solved, const ShapeEdit& edit) {
   if (const auto* op = std::get_if<SetOperator>(&edit)) {
     CrossSectionOptions& options = m.options;
     if (op->a) options.a = *op->a;
@@ -108,13 +103,14 @@ void ShapeEditsOf<CrossSectionModel>::applyOwnEdit(CrossSectionModel& m, const S
   }
 }
 
-std::vector<Vec3> ShapeEditsOf<CrossSectionModel>::reachPoints(const CrossSectionModel& m) {
+std::vector<Vec3> sectionReachPoints(const CrossSectionModel& m) {
   std::vector<Vec3> out;
   for (const CurveInput& c : m.curves) addReachPoints(out, c);
   return out;
 }
 
-std::string ShapeEditsOf<CrossSectionModel>::dragAdvice(const CrossSectionModel& m) {
+/// The seed's marching chains ("c2", "shared-curves") pass a moved point on.
+std::string sectionDragAdvice(const CrossSectionModel& m) {
   if (m.options.method == ChainMethod::Global) return "";
   return fmt::format(
       "this chain is built by the seed's marching method \"{}\": a moved point is passed "
@@ -123,8 +119,8 @@ std::string ShapeEditsOf<CrossSectionModel>::dragAdvice(const CrossSectionModel&
       m.options.method == ChainMethod::ExactC2 ? "c2" : "shared-curves");
 }
 
-ModelHandles ShapeEditsOf<CrossSectionModel>::handles(const CrossSectionModel& m,
-                                                      const SolvedModel&) {
+/// Its sections' points.
+ModelHandles sectionHandles(const CrossSectionModel& m, const SolvedModel&) {
   ModelHandles out;
   for (std::uint32_t i = 0; i < m.curves.size(); ++i)
     addCurve(out, CurveRef{i, ""}, fmt::format("section {}", i), curvePoints(m.curves[i]),
@@ -132,7 +128,7 @@ ModelHandles ShapeEditsOf<CrossSectionModel>::handles(const CrossSectionModel& m
   return out;
 }
 
-ModelSettings ShapeEditsOf<CrossSectionModel>::settings(const CrossSectionModel& m) {
+ModelSettings sectionSettings(const CrossSectionModel& m) {
   ModelSettings out;
   out.op = ModelSettings::Operator{.a = m.options.a,
                                    .modes = m.options.modes,
@@ -141,5 +137,14 @@ ModelSettings ShapeEditsOf<CrossSectionModel>::settings(const CrossSectionModel&
   out.overlay = "Curves and spine";
   return out;
 }
+
+constexpr const char* kOps[] = {"set-operator", "add-section", "remove-section"};
+
+}  // namespace
+
+constinit const ShapeEditsOf<CrossSectionModel> kCrossSectionEdits{
+    kOps,           sectionCurve,       parseSectionEdit,  applySectionEdit,
+    nullptr,        sectionReachPoints, sectionDragAdvice, sectionHandles,
+    sectionSettings};
 
 }  // namespace pdesurf::detail

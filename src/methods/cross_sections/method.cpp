@@ -9,7 +9,7 @@
 namespace pdesurf::detail {
 
 const SurfaceMethod& crossSectionsMethod() {
-  static const SpectralMethod<CrossSectionModel> method("cross-sections",
+  static const SpectralMethod<CrossSectionModel> method(kCrossSectionEdits, "cross-sections",
                                                         parseCrossSectionsDocument);
   return method;
 }

@@ -1,8 +1,8 @@
 // The shape edits (ShapeEdit, session.hpp) of the spectral, cross-section and B-spline PDE
 // methods, private to src/methods/. What every such method shares is here and in this folder
 // (the curve edits, their falloff, parsing, the reach check); what is one method's own (the
-// curves it names, its own edits, its handles) is in that method's folder, in the
-// specialisation of ShapeEditsOf for its model type, which ShapeEditedMethod calls.
+// curves it names, its own edits, its handles) is in that method's folder, in its table
+// ShapeEditsOf<Model>, which ShapeEditedMethod calls.
 #pragma once
 
 #include <array>
@@ -100,21 +100,38 @@ void addCurve(ModelHandles& out, const CurveRef& ref, std::string label,
 void addTangents(ModelHandles& out, const CurveRef& ref, const std::vector<Vec3>& at,
                  const std::vector<Vec3>& base, bool mean);
 
-/// What a shape-edited method's model type `Model` does itself: specialised in the method's
-/// folder (spectral/edits.hpp, cross_sections/edits.hpp, bspline_pde/edits.hpp) with
-/// static members of ShapeEditor's names on `Model` (ShapeEditedMethod's calls below),
-/// `handles(const Model&, const SolvedModel&)` and `settings(const Model&)`.
+/// What a shape-edited method's model type `Model` does itself, as ShapeEditor's members on
+/// `Model` (ShapeEditedMethod calls them), its handles and its settings: one table a method,
+/// made in the method's folder (spectral/edits.cpp, cross_sections/edits.cpp,
+/// bspline_pde/edits.cpp).
 template <class Model>
-struct ShapeEditsOf;
+struct ShapeEditsOf {
+  std::span<const char* const> ops;
+  CurveTarget (*curve)(Model& m, const CurveRef& ref, const std::string& path);
+  ShapeEdit (*parseOwnEdit)(std::string_view op, const ModelReader& rd, const Json& doc,
+                            const Model& m);
+  void (*applyOwnEdit)(Model& m, const SolvedModel& solved, const ShapeEdit& edit);
+  /// Null: nothing moves with an edited curve but its points.
+  void (*afterCurveEdit)(const Model& before, Model& after) = nullptr;
+  std::vector<Vec3> (*reachPoints)(const Model& m);
+  /// Null: no advice.
+  std::string (*dragAdvice)(const Model& m) = nullptr;
+  ModelHandles (*handles)(const Model& m, const SolvedModel& solved);
+  /// Its operator's values and its overlay's caption (ModelSettings; `edits` is filled by
+  /// ShapeEditedMethod).
+  ModelSettings (*settings)(const Model& m);
+};
 
 /// A method whose edits are shape edits (ShapeEdit, session.hpp: its curves, nets, spines
-/// and operators): spectral, cross-sections, B-spline PDE. `Base` is an OptionlessMethod.
+/// and operators): spectral, cross-sections, B-spline PDE. `Base` is an OptionlessMethod;
+/// `own` is the method's table.
 template <class Base>
 class ShapeEditedMethod : public Base, public ShapeEditor {
  public:
   using Model = typename Base::ModelType;
-  using Own = ShapeEditsOf<Model>;
-  using Base::Base;
+  ShapeEditedMethod(const ShapeEditsOf<Model>& own, const char* type,
+                    typename Base::Parse parseFile, typename Base::Solve solveFile)
+      : Base(type, parseFile, solveFile), own_(own) {}
 
   ModelEdit parseEdit(std::string_view json, const AnyModel& model) const override {
     GroupedShapeEdit e = parseShapeEdit(*this, json, model);
@@ -124,37 +141,41 @@ class ShapeEditedMethod : public Base, public ShapeEditor {
     return applyShapeEdit(*this, context, edit);
   }
   ModelHandles handles(const SolvedModel& solved) const override {
-    return Own::handles(solved.model().template get<Model>(), solved);
+    return own_.handles(solved.model().template get<Model>(), solved);
   }
   /// The method's own settings, its edits the curve edits and then its own.
   ModelSettings settings(const AnyModel& model) const override {
-    ModelSettings out = Own::settings(model.template get<Model>());
+    ModelSettings out = own_.settings(model.template get<Model>());
     out.edits.assign(kCurveOps.begin(), kCurveOps.end());
-    out.edits.insert(out.edits.end(), Own::kOps.begin(), Own::kOps.end());
+    out.edits.insert(out.edits.end(), own_.ops.begin(), own_.ops.end());
     return out;
   }
 
   CurveTarget curve(AnyModel& model, const CurveRef& ref, const std::string& path) const override {
-    return Own::curve(model.template get<Model>(), ref, path);
+    return own_.curve(model.template get<Model>(), ref, path);
   }
-  std::span<const char* const> ownOps() const override { return Own::kOps; }
+  std::span<const char* const> ownOps() const override { return own_.ops; }
   ShapeEdit parseOwnEdit(std::string_view op, const ModelReader& rd, const Json& doc,
                          const AnyModel& model) const override {
-    return Own::parseOwnEdit(op, rd, doc, model.template get<Model>());
+    return own_.parseOwnEdit(op, rd, doc, model.template get<Model>());
   }
   void applyOwnEdit(AnyModel& next, const SolvedModel& solved,
                     const ShapeEdit& edit) const override {
-    Own::applyOwnEdit(next.template get<Model>(), solved, edit);
+    own_.applyOwnEdit(next.template get<Model>(), solved, edit);
   }
   void afterCurveEdit(const AnyModel& before, AnyModel& after) const override {
-    Own::afterCurveEdit(before.template get<Model>(), after.template get<Model>());
+    if (own_.afterCurveEdit)
+      own_.afterCurveEdit(before.template get<Model>(), after.template get<Model>());
   }
   std::vector<Vec3> reachPoints(const AnyModel& model) const override {
-    return Own::reachPoints(model.template get<Model>());
+    return own_.reachPoints(model.template get<Model>());
   }
   std::string dragAdvice(const AnyModel& model) const override {
-    return Own::dragAdvice(model.template get<Model>());
+    return own_.dragAdvice ? own_.dragAdvice(model.template get<Model>()) : std::string();
   }
+
+ private:
+  const ShapeEditsOf<Model>& own_;
 };
 
 }  // namespace pdesurf::detail

@@ -69,8 +69,9 @@ void addReachPoints(std::vector<Vec3>& out, const CurveInput& c) {
   if (const auto* f = std::get_if<FourierCurve>(&c)) out.push_back(f->a0);
 }
 
-CurveTarget ShapeEditsOf<SpectralModel>::curve(SpectralModel& m, const CurveRef& ref,
-                                               const std::string& path) {
+namespace {
+
+CurveTarget conditionCurve(SpectralModel& m, const CurveRef& ref, const std::string& path) {
   const ModelReader rd("edit");
   if (!ref.name.empty()) rd.fail(path, "a spectral model's curves are numbered (its conditions)");
   const std::uint32_t i = ref.index;
@@ -81,8 +82,8 @@ CurveTarget ShapeEditsOf<SpectralModel>::curve(SpectralModel& m, const CurveRef&
           fmt::format("$.conditions[{}].curve", i)};
 }
 
-ShapeEdit ShapeEditsOf<SpectralModel>::parseOwnEdit(std::string_view op, const ModelReader& rd,
-                                                    const Json& doc, const SpectralModel&) {
+ShapeEdit parseSpectralEdit(std::string_view op, const ModelReader& rd, const Json& doc,
+                            const SpectralModel&) {
   if (op == "set-operator") return parseSetOperator(rd, doc, true);
   if (op == "move-spine-point") {
     onlyMembers(rd, doc, {"index", "position"});
@@ -115,8 +116,7 @@ ShapeEdit ShapeEditsOf<SpectralModel>::parseOwnEdit(std::string_view op, const M
   return e;
 }
 
-void ShapeEditsOf<SpectralModel>::applyOwnEdit(SpectralModel& m, const SolvedModel& solved,
-                                               const ShapeEdit& edit) {
+void applySpectralEdit(SpectralModel& m, const SolvedModel& solved, const ShapeEdit& edit) {
   if (const auto* spine = std::get_if<SetSpine>(&edit)) {
     m.spineEdits = spine->edits;
     return;
@@ -147,14 +147,14 @@ void ShapeEditsOf<SpectralModel>::applyOwnEdit(SpectralModel& m, const SolvedMod
   if (e.remainder) m.options.remainder = *e.remainder;
 }
 
-std::vector<Vec3> ShapeEditsOf<SpectralModel>::reachPoints(const SpectralModel& m) {
+std::vector<Vec3> spectralReachPoints(const SpectralModel& m) {
   std::vector<Vec3> out;
   for (const SpectralCondition& c : m.conditions)
     if (c.derivative == 0) addReachPoints(out, c.curve);
   return out;
 }
 
-std::string ShapeEditsOf<SpectralModel>::dragAdvice(const SpectralModel& m) {
+std::string spectralDragAdvice(const SpectralModel& m) {
   // Point 0 of each position condition given as points moved a little, the surface's largest
   // move measured (the probe's meshes correspond vertex by vertex).
   const auto positions = [](const SolvedModel& solved) {
@@ -191,8 +191,10 @@ std::string ShapeEditsOf<SpectralModel>::dragAdvice(const SpectralModel& m) {
   }
 }
 
-ModelHandles ShapeEditsOf<SpectralModel>::handles(const SpectralModel& m,
-                                                  const SolvedModel& solved) {
+/// Its conditions' points, tangent tips (a derivative condition's vectors from the points
+/// of the position condition at its u; a Fourier one's a0 from that condition's centre) and
+/// spine points (spineHandles, kSpineHandles of them).
+ModelHandles spectralHandles(const SpectralModel& m, const SolvedModel& solved) {
   ModelHandles out;
   for (std::uint32_t i = 0; i < m.conditions.size(); ++i) {
     const SpectralCondition& c = m.conditions[i];
@@ -235,7 +237,7 @@ ModelHandles ShapeEditsOf<SpectralModel>::handles(const SpectralModel& m,
   return out;
 }
 
-ModelSettings ShapeEditsOf<SpectralModel>::settings(const SpectralModel& m) {
+ModelSettings spectralSettings(const SpectralModel& m) {
   ModelSettings out;
   out.op = ModelSettings::Operator{.kind = m.op.kind,
                                    .power = m.op.power,
@@ -245,6 +247,20 @@ ModelSettings ShapeEditsOf<SpectralModel>::settings(const SpectralModel& m) {
   out.overlay = "Curves and spine";
   return out;
 }
+
+constexpr const char* kOps[] = {"set-operator", "set-spine", "move-spine-point"};
+
+}  // namespace
+
+constinit const ShapeEditsOf<SpectralModel> kSpectralEdits{kOps,
+                                                           conditionCurve,
+                                                           parseSpectralEdit,
+                                                           applySpectralEdit,
+                                                           nullptr,
+                                                           spectralReachPoints,
+                                                           spectralDragAdvice,
+                                                           spectralHandles,
+                                                           spectralSettings};
 
 }  // namespace detail
 

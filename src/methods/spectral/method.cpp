@@ -8,8 +8,8 @@
 namespace pdesurf::detail {
 
 const SurfaceMethod& spectralMethod() {
-  static const SpectralMethod<SpectralModel> method("spectral", parseSpectralDocument);
-  return method;
+  static const SpectralMethod<SpectralModel> m(kSpectralEdits, "spectral", parseSpectralDocument);
+  return m;
 }
 
 }  // namespace pdesurf::detail

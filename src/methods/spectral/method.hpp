@@ -89,15 +89,14 @@ class SpectralMethod final
     : public ShapeEditedMethod<OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface>> {
  public:
   using Base = ShapeEditedMethod<OptionlessMethod<Model, SolvedSpectral, SolvedSpectralSurface>>;
-  SpectralMethod(const char* type, typename Base::Parse parseFile)
-      : Base(type, parseFile, pdesurf::solve) {}
+  SpectralMethod(const ShapeEditsOf<Model>& edits, const char* type, typename Base::Parse parseFile)
+      : Base(edits, type, parseFile, pdesurf::solve) {}
 
   ModelReport report(const SolvedModel& solved) const override {
     return spectralReport(solved.surface().get<SolvedSpectral>());
   }
-  std::string info(const SolvedModel& solved, bool json) const override {
-    return spectralInfo(solved.surface().get<SolvedSpectral>(), solved.source(),
-                        this->name(solved.model()), json);
+  ModelInfo info(const SolvedModel& solved) const override {
+    return spectralInfo(solved.surface().get<SolvedSpectral>());
   }
 };
 

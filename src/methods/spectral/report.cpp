@@ -9,13 +9,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "pdesurf/model_info.hpp"
+
 namespace pdesurf::detail {
 
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-Json pointJson(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
 /// Samples per patch side for the bounding box `info` reports: the box of these samples.
 constexpr std::uint32_t kInfoBoxRows = 65, kInfoBoxColumns = 128;
@@ -45,8 +45,7 @@ ModelReport spectralReport(const SolvedSpectral& solved) {
   return r;
 }
 
-std::string spectralInfo(const SolvedSpectral& solved, const std::string& path,
-                         const std::string& name, bool json) {
+ModelInfo spectralInfo(const SolvedSpectral& solved) {
   // Box of a dense sample of the shown surface.
   Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
   for (std::size_t k = 0; k < solved.patchCount(); ++k) {
@@ -96,37 +95,29 @@ std::string spectralInfo(const SolvedSpectral& solved, const std::string& path,
     }
   // A chain's own operator: its patches' are in their local parameters.
   const SpectralOperator& op = solved.chain ? solved.chain->op : solved.patchAt(0).op();
-  if (json) {
-    Json j = {{"model", path},
-              {"name", name},
-              {"type", solved.type},
-              {"operator", operatorText(op)},
-              {"order", op.order()},
-              {"patches", solved.patchCount()},
-              {"condition_error_relative", worstCondition},
-              {"bbox", {{"min", pointJson(lo)}, {"max", pointJson(hi)}}},
-              {"patch_details", std::move(patchList)}};
-    if (solved.chain) {
-      j["method"] = chainMethodName(solved.chain->method);
-      j["joints"] = std::move(joints);
-    }
-    return j.dump(2) + "\n";
-  }
-  std::string out;
-  out += fmt::format("model      {}{}\n", path, name.empty() ? "" : " (" + name + ")");
-  out += fmt::format("type       {}\n", solved.type);
-  out += fmt::format("operator   {} (order {}), {} Fourier modes{}\n", operatorText(op), op.order(),
-                     solved.patchAt(0).modes(),
-                     solved.patchAt(0).hasRemainder() ? " + remainder" : "");
-  out += fmt::format("patches    {}\n", solved.patchCount());
-  out += fmt::format("conditions largest error {:.3g} (relative to the curves' size)\n",
-                     worstCondition);
+  const SpectralPatch& first = solved.patchAt(0);
+  ModelInfo info;
+  info.facts = {
+      {"type", "type", solved.type, ""},
+      {"operator", "operator", operatorText(op),
+       fmt::format("{} (order {}), {} Fourier modes{}", operatorText(op), op.order(), first.modes(),
+                   first.hasRemainder() ? " + remainder" : "")},
+      {"", "order", op.order(), ""},
+      {"patches", "patches", solved.patchCount(), ""},
+      {"conditions", "condition_error_relative", worstCondition,
+       fmt::format("largest error {:.3g} (relative to the curves' size)", worstCondition)}};
   if (solved.chain)
-    out += fmt::format("joints     {} ({}): largest relative gap C0 {:.3g}, C1 {:.3g}, C2 {:.3g}\n",
-                       joints.size(), chainMethodName(solved.chain->method), c0, c1, c2);
-  out += fmt::format("bbox       [{}, {}, {}] to [{}, {}, {}]\n", lo.x(), lo.y(), lo.z(), hi.x(),
-                     hi.y(), hi.z());
-  return out;
+    info.facts.push_back(
+        {"joints", "", joints.size(),
+         fmt::format("{} ({}): largest relative gap C0 {:.3g}, C1 {:.3g}, C2 {:.3g}", joints.size(),
+                     chainMethodName(solved.chain->method), c0, c1, c2)});
+  info.facts.push_back(boxFact(lo, hi));
+  info.facts.push_back({"", "patch_details", std::move(patchList), ""});
+  if (solved.chain) {
+    info.facts.push_back({"", "method", chainMethodName(solved.chain->method), ""});
+    info.facts.push_back({"", "joints", std::move(joints), ""});
+  }
+  return info;
 }
 
 }  // namespace pdesurf::detail

@@ -9,6 +9,7 @@
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/edit_io.hpp"
 #include "pdesurf/error.hpp"
+#include "pdesurf/model_info.hpp"
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/session.hpp"
 
@@ -22,55 +23,46 @@ ModelReport frameReport(const VertexFrameModel& model, const VertexFrameSurface&
           fmt::format("C0 gap {:.3g}", measureC0Gap(surface).maxGap)};
 }
 
-std::string frameInfo(const SolvedModel& solved, const VertexFrameModel& model,
-                      const VertexFrameSurface& surface, bool json) {
-  const std::string& modelPath = solved.source();
+ModelInfo frameInfo(const SolvedModel& solved, const VertexFrameModel& model,
+                    const VertexFrameSurface& surface) {
+  const FrameTopology& topology = *surface.topology;
   const C0Report c0 = measureC0Gap(surface);
   const Bounds b = surfaceBounds(surface);
   const double diag = b.diagonal();
   const double rel = diag > 0.0 ? c0.maxGap / diag : c0.maxGap;
   std::size_t pinned = 0;
-  for (auto p : surface.topology->stripPinned) pinned += p;
+  for (auto p : topology.stripPinned) pinned += p;
   const std::size_t storage = storageBytes(model);
   const std::size_t coincident = coincidentVertices(model);
-  if (json) {
-    nlohmann::json j = {
-        {"model", modelPath},
-        {"name", model.name},
-        {"vertices", model.vertices.size()},
-        {"frames", model.frames.size()},
-        {"strips", surface.topology->stripCount},
-        {"pinned_strips", pinned},
-        {"edges", surface.topology->edges.size()},
-        {"shared_edges", c0.sharedEdges},
-        {"orientable", surface.topology->orientable},
-        {"c0_gap", c0.maxGap},
-        {"c0_gap_relative", rel},
-        {"bbox",
-         {{"min", {b.min.x(), b.min.y(), b.min.z()}}, {"max", {b.max.x(), b.max.y(), b.max.z()}}}},
-        {"storage_bytes", storage},
-        {"coincident_vertices", coincident},
-        {"solver", solved.options().vertexFrames.solver == Solver::Local ? "local" : "global"},
-        {"notes", surface.notes}};
-    return j.dump(2) + "\n";
-  }
-  std::string out;
-  out += fmt::format("model      {}{}\n", modelPath,
-                     model.name.empty() ? "" : " (" + model.name + ")");
-  out += fmt::format("vertices   {}\nframes     {}\n", model.vertices.size(), model.frames.size());
-  out += fmt::format("strips     {} ({} pinned to 0)\n", surface.topology->stripCount, pinned);
-  out += fmt::format("edges      {} ({} shared)\n", surface.topology->edges.size(), c0.sharedEdges);
-  out += fmt::format("C0 gap     {} (relative to the bounding-box diagonal: {})\n", c0.maxGap, rel);
-  out += fmt::format("bbox       [{}, {}, {}] to [{}, {}, {}]\n", b.min.x(), b.min.y(), b.min.z(),
-                     b.max.x(), b.max.y(), b.max.z());
-  out += fmt::format("storage    {} bytes (numbers to six significant digits)\n", storage);
-  if (!surface.topology->orientable) out += "orientable no\n";
+  ModelInfo info;
+  info.keysSorted = true;
+  info.facts = {{"vertices", "vertices", model.vertices.size(), ""},
+                {"frames", "frames", model.frames.size(), ""},
+                {"strips", "strips", topology.stripCount,
+                 fmt::format("{} ({} pinned to 0)", topology.stripCount, pinned)},
+                {"", "pinned_strips", pinned, ""},
+                {"edges", "edges", topology.edges.size(),
+                 fmt::format("{} ({} shared)", topology.edges.size(), c0.sharedEdges)},
+                {"", "shared_edges", c0.sharedEdges, ""},
+                {"C0 gap", "c0_gap", c0.maxGap,
+                 fmt::format("{} (relative to the bounding-box diagonal: {})", c0.maxGap, rel)},
+                {"", "c0_gap_relative", rel, ""},
+                boxFact(b.min, b.max),
+                {"storage", "storage_bytes", storage,
+                 fmt::format("{} bytes (numbers to six significant digits)", storage)},
+                {"", "orientable", topology.orientable, ""},
+                {"", "coincident_vertices", coincident, ""},
+                {"", "solver",
+                 solved.options().vertexFrames.solver == Solver::Local ? "local" : "global", ""},
+                {"", "notes", surface.notes, ""}};
+  if (!topology.orientable) info.facts.push_back({"orientable", "", false, "no"});
   if (coincident > 0)
-    out += fmt::format(
-        "warning    {} {} where another vertex stands, under another index: frames "
-        "meet only through shared indices, so the surface may have cracks there\n",
-        coincident, coincident == 1 ? "vertex stands" : "vertices stand");
-  return out;
+    info.facts.push_back(
+        {"warning", "", coincident,
+         fmt::format("{} {} where another vertex stands, under another index: frames meet "
+                     "only through shared indices, so the surface may have cracks there",
+                     coincident, coincident == 1 ? "vertex stands" : "vertices stand")});
+  return info;
 }
 
 class SolvedFrames final
@@ -78,9 +70,6 @@ class SolvedFrames final
  public:
   using UnitSquarePatches::UnitSquarePatches;
 
-  Mesh tessellate(const TessellateOptions& options) const override {
-    return pdesurf::tessellate(value_, options);
-  }
   NurbsModel toNurbs(const NurbsExportOptions& options) const override {
     return pdesurf::toNurbs(value_, options);
   }
@@ -150,9 +139,9 @@ class VertexFramesMethod final : public MethodOf<VertexFrameModel> {
     return frameReport(solved.model().get<VertexFrameModel>(),
                        solved.surface().get<VertexFrameSurface>());
   }
-  std::string info(const SolvedModel& solved, bool json) const override {
+  ModelInfo info(const SolvedModel& solved) const override {
     return frameInfo(solved, solved.model().get<VertexFrameModel>(),
-                     solved.surface().get<VertexFrameSurface>(), json);
+                     solved.surface().get<VertexFrameSurface>());
   }
   ModelEdit parseEdit(std::string_view json, const AnyModel& model) const override {
     GroupedEdit e = parseFrameEdit(json, model.get<VertexFrameModel>());
