@@ -109,6 +109,13 @@ struct FitOptions {
   /// map from (u, v) to the surface close to a rotation and scale in the mesh's tangent
   /// plane, so its Jacobian cannot turn over. 0: off (the distances alone).
   double conformalWeight = 1e-5;
+  /// Weight ν of the normal-alignment term: ν diag² · Σ_i w_i ((S_u·m)² / |S_u|² +
+  /// (S_v·m)² / |S_v|²) over the surface samples, w_i a sample's share of the surface's
+  /// area and m the mesh's normal at its closest point: the squared sines of the patch
+  /// tangents' tilt out of the mesh's tangent plane, against the mean squared distances
+  /// (docs/rebuild.md, "Normals"). It pulls the patches' tangents, and so their normals,
+  /// towards the mesh's, most where the C0 seams between frames kink. 0: off. Finite, ≥ 0.
+  double normalWeight = 3e-4;
   /// After the vertex fit stops, fits the shape too, for up to maxIterations more
   /// iterations: a whole-frame sculpting force per frame (its f0 joins the vertices in the
   /// least squares: with a1, a2 fixed it only adds f0-proportional sin(πu) sin(πv) to the
