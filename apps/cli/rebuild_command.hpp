@@ -31,6 +31,8 @@ struct VertexFrameRebuildArgs {
   AutoLayoutArgs automatic;   ///< without --layout, --grid and --tube
   /// Weight of the fold-free term (0: off; FitOptions::conformalWeight).
   double conformalWeight = 1e-5;
+  /// Weight of the normal-alignment term (0: off; FitOptions::normalWeight).
+  double normalWeight = 0.0;
 
   void add(CLI::App* cmd);
 };

@@ -34,7 +34,8 @@ COLUMNS = ("path", "status", "error", "method", "layout", "frames", "sections",
 # rebuild's keywords that the batch passes on (every `pdesurf rebuild` option but those that
 # name one mesh's outputs: -o, --part, --name, --json, --quiet, --loft).
 REBUILD_OPTIONS = ("kind", "grid", "layout", "tube", "iterations", "tolerance", "smoothness",
-                   "fit_samples", "prevent_folds", "fold_weight", "fit_shape", "frames",
+                   "fit_samples", "prevent_folds", "fold_weight", "normal_weight", "fit_shape",
+                   "frames",
                    "target_rms", "max_normal_deviation", "quads", "crease_angle", "resolution",
                    "samples", "axis", "count", "range", "near", "track", "modes", "points", "a",
                    "ends", "exact")
@@ -658,6 +659,7 @@ def parser():
     r.add_argument("--fit-samples", type=int, default=9)
     r.add_argument("--prevent-folds", action="store_true")
     r.add_argument("--fold-weight", type=float, default=1e-5)
+    r.add_argument("--normal-weight", type=float, default=0.0)
     r.add_argument("--fit-shape", action="store_true")
     r.add_argument("--resolution", type=int, default=17)
     r.add_argument("--samples", type=int, default=100000)

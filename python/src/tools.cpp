@@ -169,21 +169,17 @@ std::optional<std::array<std::uint32_t, 2>> pairKeyword(const py::dict& keywords
 /// rebuild's keywords (pdesurf.rebuild's, None: not given) as the library's options, checked
 /// as the CLI checks them (checkRebuildOptions, the messages in the keywords' spelling).
 RebuildOptions rebuildOptions(const py::dict& keywords, const std::string& source) {
-  static constexpr const char* kKeywords[] = {"kind",          "grid",
-                                              "layout",        "tube",
-                                              "iterations",    "tolerance",
-                                              "smoothness",    "fit_samples",
-                                              "prevent_folds", "fold_weight",
-                                              "fit_shape",     "frames",
-                                              "target_rms",    "max_normal_deviation",
-                                              "quads",         "crease_angle",
-                                              "resolution",    "samples",
-                                              "axis",          "count",
-                                              "range",         "near",
-                                              "track",         "modes",
-                                              "points",        "a",
-                                              "ends",          "exact",
-                                              "name"};
+  static constexpr const char* kKeywords[] = {
+      "kind",        "grid",          "layout",
+      "tube",        "iterations",    "tolerance",
+      "smoothness",  "fit_samples",   "prevent_folds",
+      "fold_weight", "normal_weight", "fit_shape",
+      "frames",      "target_rms",    "max_normal_deviation",
+      "quads",       "crease_angle",  "resolution",
+      "samples",     "axis",          "count",
+      "range",       "near",          "track",
+      "modes",       "points",        "a",
+      "ends",        "exact",         "name"};
   for (const auto& [key, value] : keywords) {
     const std::string k = py::str(key);
     if (std::find_if(std::begin(kKeywords), std::end(kKeywords),
@@ -228,6 +224,7 @@ RebuildOptions rebuildOptions(const py::dict& keywords, const std::string& sourc
   o.fit.samplesPerSide = countKeyword(keywords, "fit_samples", o.fit.samplesPerSide);
   o.fit.preventFolds = keyword<bool>(keywords, "prevent_folds", o.fit.preventFolds);
   o.fit.conformalWeight = keyword<double>(keywords, "fold_weight", o.fit.conformalWeight);
+  o.fit.normalWeight = keyword<double>(keywords, "normal_weight", o.fit.normalWeight);
   o.fit.fitShape = keyword<bool>(keywords, "fit_shape", o.fit.fitShape);
   o.resolution = countKeyword(keywords, "resolution", o.resolution);
   const std::string axis = keyword<std::string>(keywords, "axis", "z");

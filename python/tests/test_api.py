@@ -249,6 +249,21 @@ def test_rebuild_fold_weight_is_the_cli_option(cgal_mesh, tmp_path):
         pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, fold_weight=-1)
 
 
+def test_rebuild_normal_weight_is_the_cli_option(cgal_mesh, tmp_path):
+    # normal_weight=3e-4 gives the model `--normal-weight 3e-4` gives, and not the default's
+    # (off): the keyword reaches the fit; a negative one is refused naming it.
+    mesh = cgal_mesh("three_peaks.off")
+    out = tmp_path / "aligned.json"
+    cli("rebuild", mesh, "--as", "vertex-frames", "--grid", 3, 3, "--iterations", 2,
+        "--normal-weight", 3e-4, "-o", out)
+    aligned = pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, normal_weight=3e-4)[0]
+    default = pdesurf.rebuild(mesh, grid=(3, 3), iterations=2)[0]
+    assert aligned.to_json() == out.read_text()
+    assert default.to_json() != aligned.to_json()
+    with pytest.raises(ValueError, match="normal_weight"):
+        pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, normal_weight=-1)
+
+
 @pytest.mark.parametrize("choice", [["--frames", 40], ["--target-rms", "0.5%"]])
 def test_rebuild_automatic_layout_is_the_cli_rebuild(choice, cgal_mesh, tmp_path):
     # No layout given: the automatic layout, of about `frames` frames or the smallest reaching

@@ -433,6 +433,12 @@ class Fitter {
   /// (δd = δS_u·(S_v × m) + δS_v·(m × S_u)), weighted β diag² / A as above: it pushes the
   /// determinant of the samples about to fold, or folded, back up, and nothing else. Both
   /// terms are off where λ = 0 (the distances alone).
+  ///
+  /// The normal-alignment term (FitOptions::normalWeight ν; docs/rebuild.md, "Normals"): per
+  /// sample and tangent T = S_u, S_v, the residual T·m / |T| (the sine of T's tilt out of the
+  /// mesh's tangent plane, |T| frozen at the current iterate, so linear in the unknowns),
+  /// weighted ν diag² w_i, w_i the sample's share of the surface's area: the rank-one
+  /// (a ⊗ m)(a ⊗ m)ᵀ per tangent in the frame's normal block.
   template <int Slots, class Blocks, class Unknown>
   void addFoldTerms(const Evaluation& current, Blocks& blocks, Eigen::VectorXd& rhs,
                     const Unknown& unknown) const {
@@ -444,6 +450,7 @@ class Fitter {
     const double unit = target_.diagonal * target_.diagonal * cellArea() / aspect.area;
     const double conformal = options_.conformalWeight * unit;
     const double barrier = kBarrierRatio * conformal;
+    const double alignment = options_.normalWeight * target_.diagonal * target_.diagonal;
     for (std::size_t k = 0; k < nFrames; ++k) {
       const double rho = aspect.rho[k], jacobian = aspect.jacobian[k];
       auto& block = blocks[k];
@@ -480,6 +487,23 @@ class Fitter {
             rhs.segment<3>(3 * unknown(k, p)) -= c * (b[p] * r0 + rho * a[p] * m.cross(r0));
         }
         const Vec3 su = current.du[i], sv = current.dv[i];
+        if (alignment > 0.0) {
+          // The normal-alignment term: each tangent T = Σ w_p x_p + offset (S_u, S_v: affine
+          // in the unknowns) tilted out of the mesh's tangent plane, the residual T·m / |T|
+          // (|T| frozen), weighted by the sample's share of the surface's area.
+          auto addTilt = [&](const Weights& w, const Vec3& offset, double length2) {
+            if (!(length2 > 0.0)) return;
+            const double c = alignment * current.pairs[i].weight / length2;
+            Eigen::Matrix<double, 3 * Slots, 1> g;
+            for (int p = 0; p < Slots; ++p) g.template segment<3>(3 * p) = w[p] * m;
+            block.noalias() += c * g * g.transpose();
+            const double t = m.dot(offset);
+            for (int p = 0; p < Slots; ++p)
+              rhs.segment<3>(3 * unknown(k, p)) -= c * t * g.template segment<3>(3 * p);
+          };
+          addTilt(a, wu.offset, su.squaredNorm());
+          addTilt(b, wv.offset, sv.squaredNorm());
+        }
         const double det = su.cross(sv).dot(m), floor = kBarrierFloor * jacobian;
         if (barrier > 0.0 && jacobian > 0.0 && det < floor) {
           // d(x) ≈ Σ_p g_pᵀ x_p - d0 + offU·(S_v × m) + offV·(m × S_u), g_p = a_p (S_v × m)
@@ -551,7 +575,8 @@ class Fitter {
       for (int i = 0; i < Slots; ++i)
         rhs.segment<3>(3 * unknown(p.frame, i)) += p.weight * a[i] * mt;
     }
-    if (options_.conformalWeight > 0.0) addFoldTerms<Slots>(current, blocks, rhs, unknown);
+    if (options_.conformalWeight > 0.0 || options_.normalWeight > 0.0)
+      addFoldTerms<Slots>(current, blocks, rhs, unknown);
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(nFrames * 9 * Slots * Slots);
     std::vector<char> used(static_cast<std::size_t>(n), 0);
@@ -656,6 +681,9 @@ FitResult fitVertexFrames(const VertexFrameModel& start, const Mesh& target,
                           const FitOptions& options) {
   if (options.samplesPerSide != 0 && options.samplesPerSide < 3)
     throw InvalidArgument("fit: samplesPerSide must be 0 (automatic) or at least 3");
+  if (!(options.normalWeight >= 0.0 && std::isfinite(options.normalWeight)))
+    throw InvalidArgument(fmt::format("fit: normalWeight must be finite and at least 0, got {}",
+                                      options.normalWeight));
   if (options.fitShape) {
     if (!start.forces.empty())
       throw InvalidArgument(

@@ -136,6 +136,18 @@ TEST_F(CliRebuild, TheNormalsLineIsCompares) {
   EXPECT_EQ(bad.code, 2) << bad.err;
   EXPECT_TRUE(contains(bad.err, "--fold-weight")) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(path("bad.json")));
+  // The normal-alignment term's weight reaches the fit (another model than without it); a
+  // negative one is a usage error naming it.
+  ASSERT_EQ(run("rebuild " + mesh +
+                " --as vertex-frames --grid 4 3 --iterations 3 --normal-weight 3e-4 -o n.json")
+                .code,
+            0);
+  EXPECT_NE(testing::readText(path("n.json")), testing::readText(path("peaks.json")));
+  const CliRun badNormal =
+      run("rebuild " + mesh + " --as vertex-frames --grid 4 3 --normal-weight -1 -o bad.json");
+  EXPECT_EQ(badNormal.code, 2) << badNormal.err;
+  EXPECT_TRUE(contains(badNormal.err, "--normal-weight")) << badNormal.err;
+  EXPECT_FALSE(std::filesystem::exists(path("bad.json")));
 }
 
 /// The last "iteration N" line's number in the output.

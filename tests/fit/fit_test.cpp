@@ -2,7 +2,9 @@
 // the RMS never rises; a cage fitted to a real mesh comes closer to it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <string>
 
 #include "fit/linear_surface.hpp"
 #include "pdesurf/analysis.hpp"
@@ -125,6 +127,9 @@ TEST(Fit, RecoversASurfaceThatARandomModelMakes) {
     // The fold-free term pulls each frame towards a conformal map of (u, v), which a random
     // model's frames are not: it would hold the surface off the truth.
     options.conformalWeight = 0.0;
+    // The normal-alignment term pulls the tangents into the planes of the tessellation's
+    // flat triangles, which the smooth truth's are only to within the chords' angles.
+    options.normalWeight = 0.0;
     options.maxIterations = 100;
     const FitResult fit = fitVertexFrames(start, target, options);
     expectRmsNeverRises(fit);
@@ -187,6 +192,7 @@ TEST(Fit, PreventsFoldsOnTheLionHead) {
   const VertexFrameModel layout = gridLayout(target, {8, 8}, "lion-head.off");
   FitOptions options;
   options.conformalWeight = 0.0;  // the refusal alone, on the distances-only fit
+  options.normalWeight = 0.0;
   const FitResult free = fitVertexFrames(layout, target, options);
   options.preventFolds = true;
   const FitResult guarded = fitVertexFrames(layout, target, options);
@@ -234,6 +240,7 @@ TEST(Fit, TheFoldFreeTermLeavesFarFewerFolds) {
     const VertexFrameModel layout = gridLayout(target, {side, side}, name);
     FitOptions plain;
     plain.conformalWeight = 0.0;
+    plain.normalWeight = 0.0;
     const FitResult without = fitVertexFrames(layout, target, plain);
     const FitResult with = fitVertexFrames(layout, target);
     expectRmsNeverRises(with);
@@ -250,6 +257,22 @@ TEST(Fit, TheFoldFreeTermLeavesFarFewerFolds) {
     // The fit's own per-iteration measure sees the same: less folded area at the end.
     EXPECT_LT(with.iterations.back().measure.foldedArea,
               without.iterations.back().measure.foldedArea);
+  }
+}
+
+TEST(Fit, ANegativeOrNonFiniteNormalWeightIsRejected) {
+  std::mt19937 rng(3);
+  const VertexFrameModel model = randomModel(rng, 1, 1, false);
+  const Mesh target = tessellate(solve(model), {5});
+  for (double w : {-1e-4, std::nan("")}) {
+    FitOptions options;
+    options.normalWeight = w;
+    try {
+      fitVertexFrames(model, target, options);
+      ADD_FAILURE() << "normalWeight " << w << " was accepted";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find("normalWeight"), std::string::npos) << e.what();
+    }
   }
 }
 
