@@ -84,14 +84,31 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
       ->check(CLI::Range(1u, 1000u));
   addInRange(cmd, "--iterations", iterations, "vertex-frames: most fitting iterations", 0u,
              100000u);
-  addInRange(cmd, "--tolerance", tolerance,
-             "vertex-frames: stop when an iteration lowers the RMS by less than this "
-             "fraction of it",
-             0.0, 1.0);
-  addInRange(cmd, "--smoothness", smoothness,
-             "vertex-frames: weight of the Laplacian of the vertex positions against the "
-             "mean squared distances",
-             0.0, 1e6);
+  // The fit's real-valued options: flag, value, help, range.
+  struct RealOption {
+    const char* flag;
+    double* value;
+    const char* help;
+    double low, high;
+  };
+  const RealOption reals[] = {
+      {"--tolerance", &tolerance,
+       "vertex-frames: stop when an iteration lowers the RMS by less than this fraction of it", 0.0,
+       1.0},
+      {"--smoothness", &smoothness,
+       "vertex-frames: weight of the Laplacian of the vertex positions against the mean "
+       "squared distances",
+       0.0, 1e6},
+      {"--fold-weight", &conformalWeight,
+       "vertex-frames: weight of the fold-free term, which keeps each frame's map from (u, v) "
+       "near a rotation and scale in the mesh's tangent plane (0: distances alone)",
+       0.0, 1.0},
+      {"--normal-weight", &normalWeight,
+       "vertex-frames: weight of the normal-alignment term, which pulls the patches' tangents "
+       "into the mesh's tangent plane (fewer creases at frame sides; 0: off, the default; "
+       "3e-4 lowers the normal deviation 8-18 % at about 1.6x the fit's time)",
+       0.0, 1.0}};
+  for (const RealOption& r : reals) addInRange(cmd, r.flag, *r.value, r.help, r.low, r.high);
   cmd->add_option("--fit-samples", samples,
                   "vertex-frames: surface samples per patch side (3 to 65; 0: about as many "
                   "surface samples as mesh vertices, 4 to 9 a side)")
@@ -100,15 +117,6 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
   cmd->add_flag("--prevent-folds", preventFolds,
                 "vertex-frames: refuse steps that fold more of the surface over (fewer folds, "
                 "a higher RMS)");
-  addInRange(cmd, "--fold-weight", conformalWeight,
-             "vertex-frames: weight of the fold-free term, which keeps each frame's map from "
-             "(u, v) near a rotation and scale in the mesh's tangent plane (0: distances alone)",
-             0.0, 1.0);
-  addInRange(cmd, "--normal-weight", normalWeight,
-             "vertex-frames: weight of the normal-alignment term, which pulls the patches' "
-             "tangents into the mesh's tangent plane (fewer creases at frame sides; 0: off, the "
-             "default; 3e-4 lowers the normal deviation 8-18 % at about 1.6x the fit's time)",
-             0.0, 1.0);
   cmd->add_flag("--fit-shape", fitShape,
                 "vertex-frames: after the vertices, fit a whole-frame force, a1 and a2 per frame "
                 "too (up to --iterations more iterations; more storage, a lower RMS)");

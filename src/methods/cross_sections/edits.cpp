@@ -128,14 +128,11 @@ ModelHandles sectionHandles(const CrossSectionModel& m, const SolvedModel&) {
   return out;
 }
 
+/// Its chain's a, modes, remainder and method.
 ModelSettings sectionSettings(const CrossSectionModel& m) {
-  ModelSettings out;
-  out.op = ModelSettings::Operator{.a = m.options.a,
-                                   .modes = m.options.modes,
-                                   .remainder = m.options.remainder,
-                                   .method = m.options.method};
-  out.overlay = "Curves and spine";
-  return out;
+  const CrossSectionOptions& o = m.options;
+  return curvesAndSpineSettings(
+      {.a = o.a, .modes = o.modes, .remainder = o.remainder, .method = o.method});
 }
 
 constexpr const char* kOps[] = {"set-operator", "add-section", "remove-section"};

@@ -100,6 +100,12 @@ void addCurve(ModelHandles& out, const CurveRef& ref, std::string label,
 void addTangents(ModelHandles& out, const CurveRef& ref, const std::vector<Vec3>& at,
                  const std::vector<Vec3>& base, bool mean);
 
+/// The settings of a method whose overlay shows its curves and spine (spectral, cross
+/// sections): its operator at the model's values; `edits` is ShapeEditedMethod's.
+inline ModelSettings curvesAndSpineSettings(const ModelSettings::Operator& op) {
+  return {{}, op, "Curves and spine"};
+}
+
 /// What a shape-edited method's model type `Model` does itself, as ShapeEditor's members on
 /// `Model` (ShapeEditedMethod calls them), its handles and its settings: one table a method,
 /// made in the method's folder (spectral/edits.cpp, cross_sections/edits.cpp,

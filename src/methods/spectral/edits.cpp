@@ -237,15 +237,13 @@ ModelHandles spectralHandles(const SpectralModel& m, const SolvedModel& solved) 
   return out;
 }
 
+/// Its operator: kind, N, a; the modes and remainder it is solved with.
 ModelSettings spectralSettings(const SpectralModel& m) {
-  ModelSettings out;
-  out.op = ModelSettings::Operator{.kind = m.op.kind,
-                                   .power = m.op.power,
-                                   .a = m.op.a,
-                                   .modes = m.options.modes,
-                                   .remainder = m.options.remainder};
-  out.overlay = "Curves and spine";
-  return out;
+  return curvesAndSpineSettings({.kind = m.op.kind,
+                                 .power = m.op.power,
+                                 .a = m.op.a,
+                                 .modes = m.options.modes,
+                                 .remainder = m.options.remainder});
 }
 
 constexpr const char* kOps[] = {"set-operator", "set-spine", "move-spine-point"};
