@@ -39,6 +39,7 @@
 #include "pdesurf/model_io.hpp"
 #include "pdesurf/spectral_io.hpp"
 #include "server.hpp"
+#include "support/cli_run.hpp"
 // After Eigen (through the pdesurf headers): httplib.h brings <resolv.h> and its `_res`.
 #include <httplib.h>
 
@@ -50,12 +51,7 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
+using testing::readText;
 
 void writeText(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
