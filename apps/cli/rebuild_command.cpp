@@ -102,13 +102,17 @@ void VertexFrameRebuildArgs::add(CLI::App* cmd) {
       {"--fold-weight", &conformalWeight,
        "vertex-frames: weight of the fold-free term, which keeps each frame's map from (u, v) "
        "near a rotation and scale in the mesh's tangent plane (0: distances alone)",
-       0.0, 1.0},
-      {"--normal-weight", &normalWeight,
-       "vertex-frames: weight of the normal-alignment term, which pulls the patches' tangents "
-       "into the mesh's tangent plane (fewer creases at frame sides; 0: off, the default; "
-       "3e-4 lowers the normal deviation 8-18 % at about 1.6x the fit's time)",
        0.0, 1.0}};
   for (const RealOption& r : reals) addInRange(cmd, r.flag, *r.value, r.help, r.low, r.high);
+  normalWeightOption =
+      cmd->add_option("--normal-weight", normalWeight,
+                      fmt::format("vertex-frames: weight of the normal-alignment term, which "
+                                  "pulls the patches' tangents into the mesh's tangent plane "
+                                  "(fewer creases at frame sides; 0: off; default {:g} with "
+                                  "--target-rms, whose bounds judge the model, 0 otherwise: it "
+                                  "costs about 1.6x the fit's time)",
+                                  kNormalWeight))
+          ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--fit-samples", samples,
                   "vertex-frames: surface samples per patch side (3 to 65; 0: about as many "
                   "surface samples as mesh vertices, 4 to 9 a side)")
@@ -216,7 +220,8 @@ RebuildOptions RebuildCommand::options() const {
   o.fit.samplesPerSide = v.samples;
   o.fit.preventFolds = v.preventFolds;
   o.fit.conformalWeight = v.conformalWeight;
-  o.fit.normalWeight = v.normalWeight;
+  if (v.normalWeightOption != nullptr && v.normalWeightOption->count() > 0)
+    o.normalWeight = v.normalWeight;
   o.fit.fitShape = v.fitShape;
   o.resolution = resolution;
   o.slice = sliceOptionsFrom<RebuildUsageError>(axis, sectionCount, range, near, track);

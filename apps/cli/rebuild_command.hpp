@@ -31,8 +31,9 @@ struct VertexFrameRebuildArgs {
   AutoLayoutArgs automatic;   ///< without --layout, --grid and --tube
   /// Weight of the fold-free term (0: off; FitOptions::conformalWeight).
   double conformalWeight = 1e-5;
-  /// Weight of the normal-alignment term (0: off; FitOptions::normalWeight).
+  /// Weight of the normal-alignment term (RebuildOptions::normalWeight), where given.
   double normalWeight = 0.0;
+  CLI::Option* normalWeightOption = nullptr;
 
   void add(CLI::App* cmd);
 };

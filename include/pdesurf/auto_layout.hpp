@@ -126,7 +126,14 @@ struct TargetSearchOptions {
   double growth = 2.0;
   double precision = 0.15;
   std::uint32_t maxFrames = 20000;  ///< no layout larger than this is tried
-  FitOptions fit;
+  /// Every trial's fit. Unlike a plain FitOptions, its normalWeight is kNormalWeight by
+  /// default: the bounds above judge each trial, and with the term a smaller layout meets them
+  /// (docs/rebuild.md, "Normals").
+  FitOptions fit = [] {
+    FitOptions f;
+    f.normalWeight = kNormalWeight;
+    return f;
+  }();
   std::uint32_t resolution = 17;  ///< samples per patch side for the measure
   DistanceOptions distance;
   /// Called after each trial, with its frame request and result.

@@ -64,9 +64,15 @@ struct RebuildOptions {
   /// With targetRms: the bound on the model's RMS normal deviation, degrees in [0, 180]
   /// (default kMaxNormalDeviation; 180: no bound).
   std::optional<double> maxNormalDeviation;
+  /// The fit's normal-alignment weight ν (--normal-weight, [0, 1]; FitOptions::normalWeight).
+  /// Unset: kNormalWeight with targetRms, where the search's fold and normal bounds judge
+  /// every trial and the term lets a smaller layout meet them (docs/rebuild.md, "Normals"); 0
+  /// for any other layout, where it costs time and, on some meshes, folded area.
+  std::optional<double> normalWeight;
   /// The fit: maxIterations 0 to 100000, tolerance [0, 1], smoothness [0, 1e6],
   /// samplesPerSide 0 (automatic) or 3 to 65, conformalWeight (--fold-weight) [0, 1];
-  /// preventFolds, fitShape. Its onIteration is RebuildProgress's.
+  /// preventFolds, fitShape. Its normalWeight is not read (normalWeight above sets it); its
+  /// onIteration is RebuildProgress's.
   FitOptions fit;
   std::uint32_t resolution = 17;  ///< samples per patch side for the measure (2 to 4097)
 

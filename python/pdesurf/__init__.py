@@ -178,7 +178,7 @@ def _check_rebuild_options(options):
 
 def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=None, tube=None,
             iterations=30, tolerance=1e-3, smoothness=1e-5, fit_samples=9, prevent_folds=False,
-            fold_weight=1e-5, normal_weight=0.0, fit_shape=False, frames=None, target_rms=None,
+            fold_weight=1e-5, normal_weight=None, fit_shape=False, frames=None, target_rms=None,
             max_normal_deviation=None, quads=None, crease_angle=None, resolution=17,
             samples=100000, axis="z", count=25, range=None, near=None, track=False, modes=8,
             points=128, a=1.0, ends="natural", exact=False, name=None, progress=None):
@@ -194,8 +194,9 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     0.1 % folded and max_normal_deviation degrees of RMS normal deviation (default 10; 180:
     no bound), shaped by quads ('pair' or 'split') and crease_angle (degrees, default 60);
     with iterations, tolerance, smoothness, fit_samples, prevent_folds, fold_weight
-    (--fold-weight), normal_weight (--normal-weight), fit_shape as the CLI's options; progress(iteration), if given, is
-    called after each iteration. kind="cross-sections" slices the mesh (axis, count, range,
+    (--fold-weight), normal_weight (--normal-weight; None: 3e-4 with target_rms, else 0),
+    fit_shape as the CLI's options; progress(iteration), if given, is called after each
+    iteration. kind="cross-sections" slices the mesh (axis, count, range,
     near, track), fits each section by `modes` Fourier modes over `points` points and joins
     them by the C4 chain (a, ends: "natural" or "estimated", exact). The options are checked
     as the CLI checks them: ValueError names the first that cannot be used.

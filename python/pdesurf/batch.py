@@ -659,7 +659,7 @@ def parser():
     r.add_argument("--fit-samples", type=int, default=9)
     r.add_argument("--prevent-folds", action="store_true")
     r.add_argument("--fold-weight", type=float, default=1e-5)
-    r.add_argument("--normal-weight", type=float, default=0.0)
+    r.add_argument("--normal-weight", type=float, metavar="W")
     r.add_argument("--fit-shape", action="store_true")
     r.add_argument("--resolution", type=int, default=17)
     r.add_argument("--samples", type=int, default=100000)

@@ -224,7 +224,8 @@ RebuildOptions rebuildOptions(const py::dict& keywords, const std::string& sourc
   o.fit.samplesPerSide = countKeyword(keywords, "fit_samples", o.fit.samplesPerSide);
   o.fit.preventFolds = keyword<bool>(keywords, "prevent_folds", o.fit.preventFolds);
   o.fit.conformalWeight = keyword<double>(keywords, "fold_weight", o.fit.conformalWeight);
-  o.fit.normalWeight = keyword<double>(keywords, "normal_weight", o.fit.normalWeight);
+  if (keywords.contains("normal_weight") && !keywords["normal_weight"].is_none())
+    o.normalWeight = keyword<double>(keywords, "normal_weight", 0.0);
   o.fit.fitShape = keyword<bool>(keywords, "fit_shape", o.fit.fitShape);
   o.resolution = countKeyword(keywords, "resolution", o.resolution);
   const std::string axis = keyword<std::string>(keywords, "axis", "z");

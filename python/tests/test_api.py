@@ -251,7 +251,8 @@ def test_rebuild_fold_weight_is_the_cli_option(cgal_mesh, tmp_path):
 
 def test_rebuild_normal_weight_is_the_cli_option(cgal_mesh, tmp_path):
     # normal_weight=3e-4 gives the model `--normal-weight 3e-4` gives, and not the default's
-    # (off): the keyword reaches the fit; a negative one is refused naming it.
+    # (off for a grid; None and 0 fit alike there): the keyword reaches the fit; a negative one
+    # is refused naming it.
     mesh = cgal_mesh("three_peaks.off")
     out = tmp_path / "aligned.json"
     cli("rebuild", mesh, "--as", "vertex-frames", "--grid", 3, 3, "--iterations", 2,
@@ -260,6 +261,8 @@ def test_rebuild_normal_weight_is_the_cli_option(cgal_mesh, tmp_path):
     default = pdesurf.rebuild(mesh, grid=(3, 3), iterations=2)[0]
     assert aligned.to_json() == out.read_text()
     assert default.to_json() != aligned.to_json()
+    off = pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, normal_weight=0)[0]
+    assert off.to_json() == default.to_json()
     with pytest.raises(ValueError, match="normal_weight"):
         pdesurf.rebuild(mesh, grid=(3, 3), iterations=2, normal_weight=-1)
 

@@ -39,6 +39,7 @@ TargetSearchOptions targetSearchOptions(const RebuildOptions& o) {
   search.maxNormalDeviation = o.maxNormalDeviation.value_or(kMaxNormalDeviation);
   search.layout = autoLayoutOptions(o);
   search.fit = o.fit;
+  search.fit.normalWeight = o.normalWeight.value_or(kNormalWeight);
   search.fit.onIteration = nullptr;  // one report a trial instead
   search.resolution = o.resolution;
   return search;
@@ -72,6 +73,7 @@ RebuildResult rebuildVertexFrames(const Mesh& mesh, const RebuildOptions& o,
   RebuildReport report;
   std::optional<Mesh> part;
   FitOptions fit = o.fit;
+  fit.normalWeight = o.normalWeight.value_or(0.0);
   fit.onIteration = progress.onIteration;
   const std::string name =
       o.name.empty() ? std::filesystem::path(o.source).stem().string() + " (vertex frames)"

@@ -130,7 +130,7 @@ void checkVertexFrames(const RebuildOptions& o, const Checker& name) {
     name.fail("fit_samples", fmt::format("{} {}: must be 0 (automatic) or 3 to 65",
                                          name("fit_samples"), o.fit.samplesPerSide));
   name.inRange("fold_weight", o.fit.conformalWeight, 0.0, 1.0);
-  name.inRange("normal_weight", o.fit.normalWeight, 0.0, 1.0);
+  if (o.normalWeight) name.inRange("normal_weight", *o.normalWeight, 0.0, 1.0);
   if (o.fit.fitShape && o.fit.maxIterations == 0)
     name.fail("fit_shape", fmt::format("{} with {} 0 would fit nothing: the shape is fitted in "
                                        "up to {} iterations after the vertices",

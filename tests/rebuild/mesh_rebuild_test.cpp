@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,9 @@ TEST(RebuildOptions, DefaultsPassAndEachConflictIsNamedInTheFrontEndsSpelling) {
   RebuildOptions weight;
   weight.fit.conformalWeight = -1.0;
   EXPECT_EQ(refusal(weight, RebuildOptionStyle::Python).first, "fold_weight");
+  RebuildOptions alignment;
+  alignment.normalWeight = 2.0;
+  EXPECT_EQ(refusal(alignment, RebuildOptionStyle::Cli).first, "normal_weight");
   RebuildOptions tube;
   tube.tube = {{2, 2}};
   EXPECT_TRUE(contains(refusal(tube, RebuildOptionStyle::Cli).second, "at least 3 sectors"));
@@ -114,6 +118,34 @@ TEST(RebuildOptions, TargetRmsReadsFractionsAndPercentages) {
   } catch (const RebuildOptionError& e) {
     EXPECT_TRUE(contains(e.what(), "target_rms 2x: not a number")) << e.what();
   }
+}
+
+/// RebuildOptions::normalWeight unset: the target search fits with kNormalWeight, a fixed
+/// layout with none; given, both fit with it.
+TEST(RebuildOptions, TheNormalWeightIsTheSearchsTermUnlessGiven) {
+  RebuildOptions o;
+  o.targetRms = 0.002;
+  EXPECT_EQ(targetSearchOptions(o).fit.normalWeight, kNormalWeight);
+  EXPECT_EQ(TargetSearchOptions{}.fit.normalWeight, kNormalWeight);
+  o.normalWeight = 0.0;
+  EXPECT_EQ(targetSearchOptions(o).fit.normalWeight, 0.0);
+  o.normalWeight = 1e-3;
+  EXPECT_EQ(targetSearchOptions(o).fit.normalWeight, 1e-3);
+
+  // A grid: unset fits as ν = 0 does (the same vertices), and unlike ν = kNormalWeight.
+  const Mesh mesh = readMesh(testing::cgalData("three_peaks.off"));
+  RebuildOptions grid;
+  grid.grid = {{3, 3}};
+  grid.fit.maxIterations = 3;
+  grid.measure = false;
+  const auto vertices = [&](std::optional<double> weight) {
+    RebuildOptions g = grid;
+    g.normalWeight = weight;
+    return rebuild(mesh, g).model.get<VertexFrameModel>().vertices;
+  };
+  const auto unset = vertices(std::nullopt);
+  EXPECT_EQ(unset, vertices(0.0));
+  EXPECT_NE(unset, vertices(kNormalWeight));
 }
 
 TEST(Rebuild, GridReportIsTheModelMeasuredAndMoreFramesFitCloser) {
