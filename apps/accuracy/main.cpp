@@ -347,6 +347,7 @@ int run(const Args& args) {
                 {"normals_reached", search.met.normals},
                 {"folds_prevented", best.foldsPrevented},
                 {"components", best.layout.components},
+                {"grid", best.grid},
                 {"folded", best.normals.foldedArea},
                 {"normal_deg", best.normals.rmsDegrees}};
       a["polygon"] = polygonJson(truth, rms, distance);

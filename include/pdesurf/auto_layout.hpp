@@ -76,6 +76,10 @@ struct AutoFit {
   /// Fitted with FitOptions::preventFolds on (the target search's second try of a layout
   /// whose plain fit folded).
   bool foldsPrevented = false;
+  /// n where the layout is the disk's n × n grid (gridLayout), the target search's other
+  /// candidate on a disk (TargetSearchOptions::tryGrid); 0 where it is the automatic layout
+  /// (then `layout` tells how it was made).
+  std::uint32_t grid = 0;
   /// The larger of the two one-way RMS values, relative to the diagonal.
   double worseRms() const;
 };
@@ -126,6 +130,12 @@ struct TargetSearchOptions {
   double growth = 2.0;
   double precision = 0.15;
   std::uint32_t maxFrames = 20000;  ///< no layout larger than this is tried
+  /// On a disk (one boundary loop, one component), also try the n × n grid (gridLayout) for
+  /// every n whose n² frames are fewer than the automatic layout's answer, and answer with the
+  /// grid where it meets the target in fewer bytes (storageBytes): a smooth height field such
+  /// as three_peaks is reached by a grid of fewer frames (docs/rebuild.md, "A target
+  /// accuracy").
+  bool tryGrid = true;
   /// Every trial's fit. Unlike a plain FitOptions, its normalWeight is kNormalWeight by
   /// default: the bounds above judge each trial, and with the term a smaller layout meets them
   /// (docs/rebuild.md, "Normals").
@@ -191,7 +201,10 @@ AutoFit fitAutoLayout(const Mesh& mesh, const AutoLayoutOptions& layout, const F
 /// that reached until they are within `precision`. The counts grown through depend on the
 /// mesh alone, and a trial that reaches a target reaches every looser one, so a looser target
 /// never gets a larger answer than a tighter one (in frames asked for; docs/rebuild.md, "A
-/// target accuracy").
+/// target accuracy"). With `tryGrid`, on a disk, the n × n grids (n = 2, 3, 5, 8, 12, 17, …,
+/// each the last times √2 rounded up, n² below the automatic answer's frames; the plain fit
+/// alone) are tried until one meets the target, then bisected against the largest that
+/// missed; the grid that meets it is the answer where its model takes fewer bytes.
 TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& options,
                              const std::string& source);
 

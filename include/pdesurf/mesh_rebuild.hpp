@@ -139,6 +139,9 @@ const char* chainEndsName(ChainEnds ends);
 struct AutoLayoutReport {
   std::uint32_t requested = 0;  ///< frames asked for
   std::size_t frames = 0, baseTriangles = 0, components = 0, creaseEdges = 0, skippedTriangles = 0;
+  /// n where the target search answered with the disk's n × n grid (AutoFit::grid; then
+  /// baseTriangles and creaseEdges are 0); 0: the automatic layout.
+  std::uint32_t grid = 0;
 };
 
 /// How the target-RMS search ended (TargetSearch).

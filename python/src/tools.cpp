@@ -306,6 +306,7 @@ py::dict reportDict(RebuildResult& result) {
     report["folds_reached"] = r.search->met.folds;
     report["normals_reached"] = r.search->met.normals;
     report["trials"] = r.search->trials;
+    report["grid"] = r.automatic ? r.automatic->grid : 0;
   }
   return report;
 }

@@ -96,6 +96,7 @@ RebuildResult rebuildVertexFrames(const Mesh& mesh, const RebuildOptions& o,
                                        s.best.normals.foldedArea,
                                        s.best.normals.rmsDegrees};
     report.automatic = layoutReport(s.best.layout, search.layout.frames);
+    report.automatic->grid = s.best.grid;
     fitted = std::move(s.best.fit);
   } else {
     VertexFrameModel layout;

@@ -10,7 +10,9 @@
 #include <random>
 #include <set>
 #include <utility>
+#include <vector>
 
+#include "pdesurf/analysis.hpp"
 #include "pdesurf/auto_layout.hpp"
 #include "pdesurf/mesh_distance.hpp"
 #include "pdesurf/mesh_io.hpp"
@@ -339,6 +341,7 @@ TEST(AutoLayout, TargetRmsSearchReachesTheTargetWithTheSmallestLayoutItTried) {
   };
   const TargetSearch s = searchTargetRms(torus, o, "torus");
   ASSERT_TRUE(s.reached);
+  EXPECT_EQ(s.best.grid, 0u);  // a torus is no disk: no grid is tried
   EXPECT_LE(s.best.worseRms(), o.targetRms);
   EXPECT_EQ(s.trials, trials.size());
   // Every trial smaller than the answer missed the target.
@@ -641,6 +644,38 @@ TEST(AutoLayout, TheNormalTermLetsTheSearchStopSmaller) {
   ASSERT_TRUE(a.reached);
   ASSERT_TRUE(b.reached);
   EXPECT_LT(a.best.fit.model.frames.size(), b.best.fit.model.frames.size());
+}
+
+/// On a disk the search tries the n × n grids too (TargetSearchOptions::tryGrid) and answers
+/// with the smaller model that meets the target: three_peaks, a smooth height field, is met at
+/// 0.2 % by the 5 × 5 grid (25 frames, 3,243 bytes, 8.9°) where the automatic layout needs 45
+/// frames (5,387 bytes). The grid answer meets every criterion, takes fewer bytes than the
+/// automatic layout's answer (the search without grids), and every grid tried with fewer
+/// frames missed the target.
+TEST(AutoLayout, OnADiskTheSearchAnswersWithTheGridWhereItIsSmaller) {
+  const Mesh peaks = readMesh(testing::cgalData("three_peaks.off"));
+  TargetSearchOptions with;
+  with.targetRms = 0.002;
+  std::vector<std::pair<std::uint32_t, bool>> grids;  // side, target met
+  with.onTrial = [&](std::uint32_t, const AutoFit& f) {
+    if (f.grid > 0) grids.emplace_back(f.grid, checkTarget(f, with).all());
+  };
+  TargetSearchOptions without = with;
+  without.tryGrid = false;
+  without.onTrial = nullptr;
+  const TargetSearch a = searchTargetRms(peaks, with, "three_peaks");
+  const TargetSearch b = searchTargetRms(peaks, without, "three_peaks");
+  ASSERT_TRUE(a.reached);
+  ASSERT_TRUE(b.reached);
+  EXPECT_EQ(b.best.grid, 0u);
+  ASSERT_GT(a.best.grid, 0u);
+  EXPECT_EQ(a.best.fit.model.frames.size(), std::size_t{a.best.grid} * a.best.grid);
+  EXPECT_LT(storageBytes(a.best.fit.model), storageBytes(b.best.fit.model));
+  ASSERT_FALSE(grids.empty());
+  for (const auto& [side, met] : grids) {
+    EXPECT_LT(std::size_t{side} * side, b.best.fit.model.frames.size());  // fewer frames only
+    if (side < a.best.grid) EXPECT_FALSE(met) << side;
+  }
 }
 
 TEST(AutoLayout, MoreFramesNeverFitThreePeaksWorse) {
