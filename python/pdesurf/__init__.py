@@ -207,8 +207,8 @@ def rebuild(vertices, triangles=None, kind="vertex-frames", grid=None, layout=No
     seed's Table 1 convention); vertex frames also "frames", "iterations", "stop_reason";
     cross sections and tubes "part" (the mesh part measured against), cross sections
     "sections" and "part_storage_bytes"; the automatic layout "mesh_storage_bytes", and with
-    target_rms "target_reached", "rms_reached", "folds_reached", "normals_reached" and
-    "trials".
+    target_rms "target_reached", "rms_reached", "folds_reached", "normals_reached", "trials"
+    and "grid" (n where the answer is the disk's n × n grid; 0: the automatic layout).
     The GIL is released while fitting and measuring.
     """
     options = {key: value for key, value in locals().items()

@@ -289,6 +289,23 @@ def test_rebuild_automatic_layout_is_the_cli_rebuild(choice, cgal_mesh, tmp_path
         assert f"({report['trials']} layout" in printed
 
 
+def test_rebuild_target_on_a_disk_may_answer_with_the_grid(cgal_mesh, tmp_path):
+    # CGAL's cylinder.off is a disk (one boundary loop) that the 2 x 2 grid reaches at 0.4 %
+    # within the bounds with fewer bytes than the automatic layout: the report's "grid" says
+    # so, as the CLI's line does, and the model is the CLI's.
+    mesh = cgal_mesh("cylinder.off")
+    out = tmp_path / "grid.json"
+    printed = cli("rebuild", mesh, "--as", "vertex-frames", "--target-rms", "0.4%", "-o", out)
+    model, report = pdesurf.rebuild(mesh, target_rms="0.4%")
+    assert model.to_json() == out.read_text()
+    assert report["target_reached"]
+    n = report["grid"]
+    assert n > 0 and report["frames"] == n * n
+    assert f"the disk's {n} × {n} grid" in printed
+    # A closed mesh is no disk: no grid.
+    assert pdesurf.rebuild(cgal_mesh("sphere.off"), target_rms="0.5%", iterations=4)[1]["grid"] == 0
+
+
 def test_rebuild_max_normal_deviation_is_the_cli_option(cgal_mesh, tmp_path):
     # The normal bound of the target search: the keyword gives the CLI option's model, and
     # the report says which of the target's criteria the model meets.
