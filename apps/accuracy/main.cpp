@@ -252,10 +252,9 @@ int run(const Args& args) {
     };
     sweep.push_back(fitted(false));
     if (sweep.back().folded > kMaxFoldedArea) sweep.push_back(fitted(true));
-    const bool done = std::any_of(sweep.end() - (sweep.back().foldsPrevented ? 2 : 1), sweep.end(),
-                                  [&](const Candidate& c) {
-                                    return c.rms <= finest && c.folded <= kMaxFoldedArea;
-                                  });
+    const bool done = std::any_of(
+        sweep.end() - (sweep.back().foldsPrevented ? 2 : 1), sweep.end(),
+        [&](const Candidate& c) { return c.rms <= finest && c.folded <= kMaxFoldedArea; });
     if (done || spent > args.budget) break;
   }
 

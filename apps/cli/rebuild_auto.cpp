@@ -14,9 +14,10 @@ constexpr std::size_t kHeldLayoutFactor = 2;
 
 std::string madeLine(const AutoLayoutReport& a) {
   if (a.grid > 0)
-    return fmt::format("{}: the disk's {} × {} grid, which meets the target in fewer bytes than "
-                       "the automatic layout",
-                       count(a.frames, "frame"), a.grid, a.grid);
+    return fmt::format(
+        "{}: the disk's {} × {} grid, which meets the target in fewer bytes than "
+        "the automatic layout",
+        count(a.frames, "frame"), a.grid, a.grid);
   return fmt::format(
       "{} from {} of the mesh simplified by Garland–Heckbert quadrics, {} ({} in one model), "
       "{} kept on frame edges{}",
@@ -98,15 +99,14 @@ void printTrial(const RebuildOptions& options, std::uint32_t requested, const Au
                           !met.folds
                               ? fmt::format("folds more than {}", percent(search.maxFoldedArea))
                               : fmt::format("deviates more than {:g}°", search.maxNormalDeviation));
-  const std::string layout =
-      f.grid > 0 ? fmt::format("the disk's {} × {} grid", f.grid, f.grid)
-                 : fmt::format("{} asked for, {} made", count(requested, "frame"),
-                               f.layout.model.frames.size());
+  const std::string layout = f.grid > 0
+                                 ? fmt::format("the disk's {} × {} grid", f.grid, f.grid)
+                                 : fmt::format("{} asked for, {} made", count(requested, "frame"),
+                                               f.layout.model.frames.size());
   fmt::print(
       "trial: {}{}: model -> mesh RMS {}, mesh -> model RMS {}, folded {}, "
       "normals {:.3g}° ({})\n",
-      layout,
-      f.foldsPrevented && !options.fit.preventFolds ? ", steps that fold more refused" : "",
+      layout, f.foldsPrevented && !options.fit.preventFolds ? ", steps that fold more refused" : "",
       percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
       percent(f.normals.foldedArea), f.normals.rmsDegrees, verdict);
 }

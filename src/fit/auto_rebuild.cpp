@@ -19,8 +19,8 @@ double AutoFit::worseRms() const {
 namespace {
 
 /// Fits `out.layout.model` to the mesh and measures the fitted model as `compare` does.
-void fitAndMeasure(AutoFit& out, const Mesh& mesh, const FitOptions& fit,
-                   std::uint32_t resolution, const DistanceOptions& distance) {
+void fitAndMeasure(AutoFit& out, const Mesh& mesh, const FitOptions& fit, std::uint32_t resolution,
+                   const DistanceOptions& distance) {
   out.fit = fitVertexFrames(out.layout.model, mesh, fit);
   const Mesh surface = tessellate(solve(out.fit.model), {resolution});
   out.distance = meshDistance(surface, mesh, distance);

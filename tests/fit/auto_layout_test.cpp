@@ -587,10 +587,10 @@ TEST(AutoLayout, AFrameTheFitShrinksToAPointStaysOnTheMesh) {
 
 /// The normal-alignment term (FitOptions::normalWeight) on the bumpy sphere at kNormalFrames
 /// frames asked for: the RMS normal deviation (as `compare` measures it) with the term at
-/// kNormalWeight (the target search's default; a plain fit's is 0) is below the fit without it (ν = 0) by at least the factor
-/// kNormalGain (measured: 5.61° without, 5.16° with, 1.088; at 24, 36 and 60 frames 1.03–1.07: the
-/// sphere is smooth and finely meshed, so its seams kink little; the CGAL meshes of
-/// docs/rebuild.md, "Normals", gain 1.09–1.21) ...
+/// kNormalWeight (the target search's default; a plain fit's is 0) is below the fit without it (ν =
+/// 0) by at least the factor kNormalGain (measured: 5.61° without, 5.16° with, 1.088; at 24, 36 and
+/// 60 frames 1.03–1.07: the sphere is smooth and finely meshed, so its seams kink little; the CGAL
+/// meshes of docs/rebuild.md, "Normals", gain 1.09–1.21) ...
 constexpr std::uint32_t kNormalFrames = 120;
 constexpr double kNormalGain = 1.05;
 /// ... at an RMS both ways no higher than this factor of the fit without it (measured 0.89:
