@@ -3,9 +3,11 @@
 // target accuracy").
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <utility>
 
+#include "fit/disk_grids.hpp"
 #include "pdesurf/analysis.hpp"
 #include "pdesurf/auto_layout.hpp"
 #include "pdesurf/error.hpp"
@@ -89,14 +91,18 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   std::optional<AutoFit> reached, closest;
   FitOptions guarded = options.fit;
   guarded.preventFolds = true;
-  auto fit = [&](std::uint32_t n, bool prevent) {
-    AutoLayoutOptions layout = options.layout;
-    layout.frames = n;
-    AutoFit f = fitAutoLayout(mesh, layout, prevent ? guarded : options.fit, options.resolution,
-                              options.distance, source);
-    f.foldsPrevented = prevent || options.fit.preventFolds;
+  // A fit made: counted, and reported with the frames asked for.
+  auto counted = [&](std::uint32_t requested, AutoFit f) {
     ++search.trials;
-    if (options.onTrial) options.onTrial(n, f);
+    if (options.onTrial) options.onTrial(requested, f);
+    return f;
+  };
+  // `layout`'s model fitted with `fit` and measured.
+  auto fitted = [&](AutoLayout layout, const FitOptions& fit) {
+    AutoFit f;
+    f.layout = std::move(layout);
+    fitAndMeasure(f, mesh, fit, options.resolution, options.distance);
+    f.foldsPrevented = fit.preventFolds;
     return f;
   };
   // One trial of `n` frames: the plain fit, and where it reaches the RMS but folds beyond
@@ -104,11 +110,13 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   // (FitOptions::preventFolds: a higher RMS, fewer folds). It reaches the target if either
   // fit does. The outcome depends on n and the target alone, never on the trials before it.
   auto trial = [&](std::uint32_t n) {
-    AutoFit plain = fit(n, false);
+    AutoLayoutOptions layoutOptions = options.layout;
+    layoutOptions.frames = n;
+    AutoFit plain = counted(n, fitted(autoLayout(mesh, layoutOptions, source), options.fit));
     const TargetCheck c = check(plain);
     Trial t{{}, c, frames(plain), plain.normals.rmsDegrees};
     if (c.rms && !c.folds && !options.fit.preventFolds) {
-      AutoFit second = fit(n, true);
+      AutoFit second = counted(n, fitted(plain.layout, guarded));
       if (closer(second, plain)) std::swap(plain, second);
       t.met = check(plain);
     }
@@ -179,20 +187,19 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   // one misses). The plain fit alone: the guarded second fit would double the grids' cost.
   if (options.tryGrid && mesh.triangleCount() > 0) {
     const std::size_t cap = frames(search.best);
+    std::unique_ptr<detail::DiskGrids> disk;  // parameterised once, at the first grid
     auto gridTrial = [&](std::uint32_t side) -> std::optional<AutoFit> {
-      AutoFit f;
-      try {
-        f.layout.model = gridLayout(mesh, {side, side}, source);
-      } catch (const LayoutError&) {
-        return std::nullopt;  // not a disk
-      }
+      if (!disk) try {
+          disk = std::make_unique<detail::DiskGrids>(mesh, source);
+        } catch (const LayoutError&) {
+          return std::nullopt;  // not a disk
+        }
+      AutoLayout grid;
+      grid.model = disk->grid({side, side});
+      grid.components = 1;
+      AutoFit f = fitted(std::move(grid), options.fit);
       f.grid = side;
-      f.layout.components = 1;
-      fitAndMeasure(f, mesh, options.fit, options.resolution, options.distance);
-      f.foldsPrevented = options.fit.preventFolds;
-      ++search.trials;
-      if (options.onTrial) options.onTrial(side * side, f);
-      return f;
+      return counted(side * side, std::move(f));
     };
     std::optional<AutoFit> gridHit;
     std::uint32_t gridMiss = 1, side = 2;

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 #include <Eigen/SparseLU>
 
+#include "fit/disk_grids.hpp"
 #include "fit/lattice_frame.hpp"
 #include "numerics/triangle_tree.hpp"
 #include "pdesurf/rebuild.hpp"
@@ -89,10 +90,22 @@ class UvLocator {
 
 }  // namespace
 
-VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
-                            const std::string& source) {
-  if (options.u < 1 || options.v < 1)
-    throw LayoutError(source, "a grid needs at least 1 × 1 frames");
+namespace detail {
+
+/// The parameterisation, what every grid reads from it: uv and 3D positions per vertex, the
+/// triangles (as the mesh orients them), a locator of uv points, and per parameter direction
+/// the cumulative share of the mesh's area.
+struct DiskGrids::Map {
+  std::vector<Eigen::Vector2d> uv;
+  std::vector<Vec3> xyz;
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  std::unique_ptr<UvLocator> locator;
+  std::array<std::vector<double>, 2> cumulative;
+};
+
+DiskGrids::~DiskGrids() = default;
+
+DiskGrids::DiskGrids(const Mesh& disk, const std::string& source) : map_(std::make_unique<Map>()) {
   // The mesh as a CGAL surface mesh: used vertices only, triangles with area only.
   SurfaceMesh sm;
   std::vector<VertexIndex> handle(disk.vertexCount());
@@ -151,13 +164,13 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
                                           SMP::get_error_message(status)));
 
   // uv and 3D positions per surface-mesh vertex; triangles as the mesh orients them.
-  std::vector<Eigen::Vector2d> uv(sm.number_of_vertices());
-  std::vector<Vec3> xyz(sm.number_of_vertices());
+  auto& [uv, xyz, tris, locator, cumulative] = *map_;
+  uv.resize(sm.number_of_vertices());
+  xyz.resize(sm.number_of_vertices());
   for (VertexIndex v : sm.vertices()) {
     uv[v] = {uvMap[v].x(), uvMap[v].y()};
     xyz[v] = point(vertexOf[v]);
   }
-  std::vector<std::array<std::uint32_t, 3>> tris;
   double signedArea = 0.0;
   for (auto f : sm.faces()) {
     std::array<std::uint32_t, 3> t{};
@@ -171,12 +184,11 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
   // normals S_u × S_v face the way the mesh's triangles do.
   if (signedArea < 0.0)
     for (auto& p : uv) std::swap(p.x(), p.y());
-  const UvLocator locator(uv, tris);
+  locator = std::make_unique<UvLocator>(uv, tris);
 
   // Grid lines at equal shares of area: mean-value coordinates squeeze a cap (a head above
   // its neck) into the middle of the square, and a uniform grid would give it one frame.
   // Each triangle's 3D area is binned by its uv centroid; the lines are the quantiles.
-  std::array<std::vector<double>, 2> cumulative;
   for (auto& c : cumulative) c.assign(kAreaBins + 1, 0.0);
   for (const auto& t : tris) {
     const double area = 0.5 * (xyz[t[1]] - xyz[t[0]]).cross(xyz[t[2]] - xyz[t[0]]).norm();
@@ -189,6 +201,10 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
     for (int b = 0; b < kAreaBins; ++b) c[b + 1] += c[b];
     for (double& x : c) x /= c.back();
   }
+}
+
+VertexFrameModel DiskGrids::grid(const GridLayoutOptions& options) const {
+  const auto& [uv, xyz, tris, locator, cumulative] = *map_;
   // The parameter where the area share reaches `share`, linear inside a bin.
   auto line = [&](int d, double share) {
     const auto& c = cumulative[d];
@@ -212,7 +228,7 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
       vertexOfPoint[std::size_t{j} * nu + i] = static_cast<std::uint32_t>(model.vertices.size());
       const Eigen::Vector2d p(line(0, static_cast<double>(i) / (nu - 1)),
                               line(1, static_cast<double>(j) / (nv - 1)));
-      const auto [t, l] = locator.locate(p);
+      const auto [t, l] = locator->locate(p);
       model.vertices.push_back(l[0] * xyz[tris[t][0]] + l[1] * xyz[tris[t][1]] +
                                l[2] * xyz[tris[t][2]]);
     }
@@ -221,8 +237,17 @@ VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
   };
   for (std::uint32_t r = 0; r < options.v; ++r)
     for (std::uint32_t c = 0; c < options.u; ++c)
-      model.frames.push_back(detail::latticeFrame(at, 2 * c, 2 * r));
+      model.frames.push_back(latticeFrame(at, 2 * c, 2 * r));
   return model;
+}
+
+}  // namespace detail
+
+VertexFrameModel gridLayout(const Mesh& disk, const GridLayoutOptions& options,
+                            const std::string& source) {
+  if (options.u < 1 || options.v < 1)
+    throw LayoutError(source, "a grid needs at least 1 × 1 frames");
+  return detail::DiskGrids(disk, source).grid(options);
 }
 
 }  // namespace pdesurf
