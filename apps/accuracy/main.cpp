@@ -57,9 +57,12 @@ constexpr std::uint32_t kBSplineNormalSamples = 129;
 
 /// A mesh's normals against the truth's (normalDeviation): folded share of its area and RMS
 /// normal deviation in degrees.
-Json normalsJson(const Mesh& model, const Mesh& truth) {
-  const NormalDeviation n = normalDeviation(model, truth);
+Json normalsJson(const NormalDeviation& n) {
   return {{"folded", n.foldedArea}, {"normal_deg", n.rmsDegrees}};
+}
+
+Json normalsJson(const Mesh& model, const Mesh& truth) {
+  return normalsJson(normalDeviation(model, truth));
 }
 
 /// The truth's topology, counted from its triangles: Euler characteristic V − E + F, boundary
@@ -152,7 +155,7 @@ struct Candidate {
   Layout layout;
   VertexFrameModel fitted;
   double rms = 0.0, fitMs = 0.0;
-  double folded = 0.0;  ///< folded share of the model's area (normalDeviation)
+  NormalDeviation normals;  ///< the model's tessellation against the truth
   std::size_t bytes = 0;
   std::uint32_t iterations = 0;
   bool foldsPrevented = false;  ///< fitted with FitOptions::preventFolds (the second try)
@@ -242,19 +245,20 @@ int run(const Args& args) {
       c.fitted.name = args.name;
       const Mesh surface = tessellate(solve(c.fitted), {kPatchResolution});
       c.rms = accuracyRms(surface, truth, distance);
-      c.folded = normalDeviation(surface, truth).foldedArea;
+      c.normals = normalDeviation(surface, truth);
       c.bytes = storageBytes(c.fitted);
       spent += c.fitMs / 1000.0;
       std::cerr << fmt::format("{}: {}{}: RMS {:.4f} %, folded {:.3f} %, {} bytes, fit {:.0f} ms\n",
                                args.name, c.layout.text, prevent ? " (folds prevented)" : "",
-                               100 * c.rms, 100 * c.folded, c.bytes, c.fitMs);
+                               100 * c.rms, 100 * c.normals.foldedArea, c.bytes, c.fitMs);
       return c;
     };
     sweep.push_back(fitted(false));
-    if (sweep.back().folded > kMaxFoldedArea) sweep.push_back(fitted(true));
+    if (sweep.back().normals.foldedArea > kMaxFoldedArea) sweep.push_back(fitted(true));
     const bool done = std::any_of(
-        sweep.end() - (sweep.back().foldsPrevented ? 2 : 1), sweep.end(),
-        [&](const Candidate& c) { return c.rms <= finest && c.folded <= kMaxFoldedArea; });
+        sweep.end() - (sweep.back().foldsPrevented ? 2 : 1), sweep.end(), [&](const Candidate& c) {
+          return c.rms <= finest && c.normals.foldedArea <= kMaxFoldedArea;
+        });
     if (done || spent > args.budget) break;
   }
 
@@ -307,16 +311,16 @@ int run(const Args& args) {
       // the one of fewer bytes); else the least folded that reaches the RMS; else the best RMS.
       const Candidate* chosen = nullptr;
       for (const Candidate& c : sweep)
-        if (c.rms <= level && c.folded <= kMaxFoldedArea &&
+        if (c.rms <= level && c.normals.foldedArea <= kMaxFoldedArea &&
             (!chosen || c.fitted.frames.size() < chosen->fitted.frames.size() ||
              (c.fitted.frames.size() == chosen->fitted.frames.size() && c.bytes < chosen->bytes)))
           chosen = &c;
       const bool reached = chosen != nullptr;
-      bool rmsReached = reached;
       if (!chosen)
         for (const Candidate& c : sweep)
-          if (c.rms <= level && (!chosen || c.folded < chosen->folded)) chosen = &c;
-      if (chosen) rmsReached = true;
+          if (c.rms <= level && (!chosen || c.normals.foldedArea < chosen->normals.foldedArea))
+            chosen = &c;
+      const bool rmsReached = chosen != nullptr;
       if (!chosen)
         chosen = &*std::min_element(sweep.begin(), sweep.end(),
                                     [](auto& a, auto& b) { return a.rms < b.rms; });
@@ -327,7 +331,7 @@ int run(const Args& args) {
       row["reached"] = reached;
       row["rms_reached"] = rmsReached;
       row["pde"] = pdeJson(*chosen);
-      row["pde"].update(normalsJson(tessellate(solve(chosen->fitted), {kPatchResolution}), truth));
+      row["pde"].update(normalsJson(chosen->normals));
       row["polygon"] = polygonJson(truth, target, distance);
       row["nurbs"] = {{"control_points", nurbs.surface.control.size()},
                       {"net", fmt::format("{} × {}", nurbs.surface.nu, nurbs.surface.nv)},

@@ -35,10 +35,9 @@ COLUMNS = ("path", "status", "error", "method", "layout", "frames", "sections",
 # name one mesh's outputs: -o, --part, --name, --json, --quiet, --loft).
 REBUILD_OPTIONS = ("kind", "grid", "layout", "tube", "iterations", "tolerance", "smoothness",
                    "fit_samples", "prevent_folds", "fold_weight", "normal_weight", "fit_shape",
-                   "frames",
-                   "target_rms", "max_normal_deviation", "quads", "crease_angle", "resolution",
-                   "samples", "axis", "count", "range", "near", "track", "modes", "points", "a",
-                   "ends", "exact")
+                   "frames", "target_rms", "max_normal_deviation", "quads", "crease_angle",
+                   "resolution", "samples", "axis", "count", "range", "near", "track", "modes",
+                   "points", "a", "ends", "exact")
 
 
 class UsageError(ValueError):
