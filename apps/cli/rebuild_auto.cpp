@@ -1,5 +1,7 @@
 #include "rebuild_auto.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
@@ -131,6 +133,16 @@ void printSearch(const RebuildOptions& options, const RebuildReport& report) {
         "before that step, {}\n",
         percent(s.targetRms), percent(s.maxFoldedArea), s.maxNormalDeviation,
         count(s.trials, "layout"), 100 * kNormalStall, answer);
+  else if (s.stop == TargetSearch::Stop::StorageLimit)
+    fmt::print(
+        "target RMS {} reached both ways, but NOT within {} ({} tried): a larger layout's "
+        "model would take more than {} bytes ({:g}x the mesh's storage, at least {}); the "
+        "closest, {} (--frames N fits a layout of any size)\n",
+        percent(s.targetRms), bounds, count(s.trials, "layout"),
+        std::max<std::size_t>(
+            static_cast<std::size_t>(kMaxStorageRatio * double(report.referenceStorageBytes)),
+            kMinStorageCap),
+        kMaxStorageRatio, kMinStorageCap, answer);
   else if (s.met.rms)
     fmt::print(
         "target RMS {} reached both ways, but NOT within {} ({} tried, up to {}x the smallest "

@@ -110,6 +110,21 @@ inline constexpr double kNormalStall = 0.1;
 /// three_peaks at 0.4 %: 23 frames the RMS, 103 folded 0.117 %).
 inline constexpr double kGrowthPastRms = 16.0;
 
+/// Past the first count that reached the RMS, the search grows no layout whose model would
+/// take more than this many times the mesh's own storage (storageBytes of both, the layout's
+/// before its fit): the bounds alone then ask for the frames, and a model several times the
+/// mesh it stands for is no answer a user wants (CGAL's bones.off, 4,204 triangles in 26
+/// components: 1,576 frames reach 0.4 % at 1.9× the mesh's bytes, and the folds held the
+/// search until 8,816 frames, 10.5×, eight minutes, still folding 0.113 %). The largest layout
+/// under the cap is tried before the search gives up the bounds (the femur's 2,350 frames,
+/// 1.46×, within both; docs/rebuild.md, "A target accuracy").
+inline constexpr double kMaxStorageRatio = 2.0;
+
+/// ... but the cap is never below this many bytes (about 1,000 frames): a small mesh's
+/// smallest layouts already outweigh it (the icosahedron's 12 frames take 3.9× its 382
+/// bytes, and its 60 follow its facets exactly), and searching them costs little.
+inline constexpr std::size_t kMinStorageCap = 128 * 1024;
+
 /// No layout is asked for with fewer frames than this: the fewest a closed surface's
 /// simplification can give (a tetrahedron's four triangles, three quads each).
 inline constexpr std::uint32_t kFewestFrames = 12;
@@ -130,6 +145,11 @@ struct TargetSearchOptions {
   double growth = 2.0;
   double precision = 0.15;
   std::uint32_t maxFrames = 20000;  ///< no layout larger than this is tried
+  /// Past the first count that reached the RMS, no layout whose model would take more than
+  /// this many times the mesh's storage, and more than minStorageCap bytes, is tried
+  /// (kMaxStorageRatio, kMinStorageCap; a ratio of 0: no such cap).
+  double maxStorageRatio = kMaxStorageRatio;
+  std::size_t minStorageCap = kMinStorageCap;
   /// On a disk (one boundary loop, one component), also try the n × n grid (gridLayout) for
   /// every n whose n² frames are fewer than the automatic layout's answer, and answer with the
   /// grid where it meets the target in fewer bytes (storageBytes): a smooth height field such
@@ -169,6 +189,8 @@ struct TargetSearch {
     LayoutStopped,   ///< the mesh is simplified no further, or maxFrames was tried
     GrowthLimit,     ///< kGrowthPastRms times the first count that reached the RMS
     NormalsStalled,  ///< the normal deviation fell by less than kNormalStall a doubling
+    StorageLimit,    ///< past the RMS, a larger layout's model would outweigh the mesh
+                     ///< (maxStorageRatio times its storage)
   };
   /// The smallest trial that reached the target; else, where the normal deviation stalled,
   /// the trial before the stalling step (it reached the RMS within the fold bound, or that
@@ -195,8 +217,11 @@ AutoFit fitAutoLayout(const Mesh& mesh, const AutoLayoutOptions& layout, const F
 /// beyond the bound, again with FitOptions::preventFolds; it reaches the target if either fit
 /// does. The count starts at `options.firstFrames` and grows by `growth` until a trial
 /// reaches the target (or the layout stops growing: the mesh is simplified no more; or the
-/// count passes kGrowthPastRms times the first that reached the RMS; or a trial within the
-/// RMS and fold bounds deviates less than kNormalStall a doubling below the trial before),
+/// count passes kGrowthPastRms times the first that reached the RMS; or, past that count,
+/// the next layout's model would take more than `maxStorageRatio` times the mesh's storage
+/// (and `minStorageCap` bytes),
+/// where the largest layout under that cap is the last tried; or a trial within the RMS and
+/// fold bounds deviates less than kNormalStall a doubling below the trial before),
 /// then is bisected geometrically between the largest count that missed and the smallest
 /// that reached until they are within `precision`. The counts grown through depend on the
 /// mesh alone, and a trial that reaches a target reaches every looser one, so a looser target

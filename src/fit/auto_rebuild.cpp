@@ -105,14 +105,20 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
     f.foldsPrevented = fit.preventFolds;
     return f;
   };
-  // One trial of `n` frames: the plain fit, and where it reaches the RMS but folds beyond
-  // the bound, the same layout fitted again with the steps that fold more samples refused
-  // (FitOptions::preventFolds: a higher RMS, fewer folds). It reaches the target if either
-  // fit does. The outcome depends on n and the target alone, never on the trials before it.
-  auto trial = [&](std::uint32_t n) {
+  // The automatic layout of about `n` frames (milliseconds: made before a trial is decided
+  // on).
+  auto layoutOf = [&](std::uint32_t n) {
     AutoLayoutOptions layoutOptions = options.layout;
     layoutOptions.frames = n;
-    AutoFit plain = counted(n, fitted(autoLayout(mesh, layoutOptions, source), options.fit));
+    return autoLayout(mesh, layoutOptions, source);
+  };
+  // One trial of `n` frames (`layout` is layoutOf(n)): the plain fit, and where it reaches the
+  // RMS but folds beyond the bound, the same layout fitted again with the steps that fold
+  // more samples refused (FitOptions::preventFolds: a higher RMS, fewer folds). It reaches the
+  // target if either fit does. The outcome depends on n and the target alone, never on the
+  // trials before it.
+  auto trial = [&](std::uint32_t n, AutoLayout layout) {
+    AutoFit plain = counted(n, fitted(std::move(layout), options.fit));
     const TargetCheck c = check(plain);
     Trial t{{}, c, frames(plain), plain.normals.rmsDegrees};
     if (c.rms && !c.folds && !options.fit.preventFolds) {
@@ -132,12 +138,21 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   // never above a tighter one's.
   std::uint32_t miss = 0, hit = 0;
   std::uint32_t n = std::max(options.firstFrames, kFewestFrames);
+  AutoLayout layout = layoutOf(n);
   std::uint32_t firstRms = 0;  // the first count that reached the RMS (missing a bound)
   std::optional<Trial> previous;
   std::optional<AutoFit> beforeStall;  // the trial before the deviation stalled
+  // Past the RMS, no layout whose model would take more bytes than this (maxStorageRatio
+  // times the mesh's storage, at least minStorageCap).
+  const double storageCap =
+      std::max(options.maxStorageRatio * double(storageBytes(mesh)), double(options.minStorageCap));
+  auto overCap = [&](const AutoLayout& l) {
+    return options.maxStorageRatio > 0.0 && double(storageBytes(l.model)) > storageCap;
+  };
+  bool capped = false;  // this trial's layout is the largest under the storage cap
   search.stop = TargetSearch::Stop::LayoutStopped;
   for (;;) {
-    Trial t = trial(n);
+    Trial t = trial(n, std::move(layout));
     if (t.met.all()) {
       hit = n;
       search.stop = TargetSearch::Stop::Reached;
@@ -147,7 +162,10 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
     const auto stands = static_cast<std::uint32_t>(std::max<std::size_t>(n, t.made));
     if (t.met.rms && firstRms == 0) firstRms = stands;
     miss = stands;
-    if (previous && t.made <= previous->made) break;
+    if (capped) {
+      search.stop = TargetSearch::Stop::StorageLimit;
+      break;
+    }
     // Within the RMS and fold bounds, but the deviation fell by less than kNormalStall a
     // doubling: more frames will not bring it within its bound.
     if (previous && t.met.rms && t.met.folds &&
@@ -166,6 +184,24 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
       search.stop = TargetSearch::Stop::GrowthLimit;
       break;
     }
+    layout = layoutOf(n);
+    // The mesh is simplified no further: the same layout again would fit the same model.
+    if (layout.model.frames.size() <= t.made) break;
+    // Past the RMS, a layout over the storage cap is shrunk (its count scaled by the cap over
+    // its bytes, a few times) to the largest under it, which is tried last; where none is
+    // larger than this trial's, the search stops here.
+    if (firstRms > 0 && overCap(layout)) {
+      for (int k = 0; k < 8 && overCap(layout) && n > stands; ++k) {
+        n = std::max(stands, static_cast<std::uint32_t>(n * storageCap /
+                                                        double(storageBytes(layout.model))));
+        layout = layoutOf(n);
+      }
+      if (overCap(layout) || layout.model.frames.size() <= t.made) {
+        search.stop = TargetSearch::Stop::StorageLimit;
+        break;
+      }
+      capped = true;
+    }
     previous = std::move(t);
   }
   // Bisect (geometrically) between the largest count that missed and the smallest that
@@ -173,7 +209,7 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   while (hit > 0 && miss > 0 && hit > miss * (1.0 + options.precision)) {
     const auto mid = static_cast<std::uint32_t>(std::lround(std::sqrt(double(miss) * hit)));
     if (mid <= miss || mid >= hit) break;
-    const Trial t = trial(mid);
+    const Trial t = trial(mid, layoutOf(mid));
     if (t.met.all())
       hit = mid;
     else

@@ -503,6 +503,82 @@ TEST(AutoLayout, TargetRmsSearchStopsGrowingWhereTheNormalDeviationStallsAndSays
   EXPECT_LE(s.best.normals.rmsDegrees, least / (1.0 - kNormalStall));
 }
 
+/// A storage cap far below the default's 2× the mesh: 0.04× the smooth sphere's 109 KB, about
+/// 35 frames, where its models' deviation still falls fast (12, 26, 54 frames: 3.9°, 2.4°,
+/// 2.2°, the facets' floor; the stall would stop the search past 54) ...
+constexpr double kSmallStorageRatio = 0.04;
+/// ... and a normal bound that no layout meets: the cap, not the bound, stops the search.
+constexpr double kUnreachableDeviation = 0.25;
+
+TEST(AutoLayout, PastTheRmsTheSearchGrowsNoModelHeavierThanTheStorageCapAndSaysSo) {
+  // The layouts reach the RMS at once; the normal bound would grow them on, but no layout
+  // whose model takes more than maxStorageRatio times the mesh's bytes is tried: the largest
+  // under the cap is tried last, and the search stops there (StorageLimit) with the closest.
+  const Mesh sphere = testing::sphereMesh(1.0, 64, 32);
+  TargetSearchOptions o;
+  o.targetRms = 4e-3;
+  o.maxNormalDeviation = kUnreachableDeviation;
+  o.maxStorageRatio = kSmallStorageRatio;
+  o.minStorageCap = 0;  // the sphere's 109 KB is below kMinStorageCap
+  const double cap = kSmallStorageRatio * double(storageBytes(sphere));
+  std::vector<std::pair<std::uint32_t, std::size_t>> trials;  // asked for, layout bytes
+  o.onTrial = [&](std::uint32_t requested, const AutoFit& f) {
+    if (f.foldsPrevented) return;  // the same layout again
+    trials.emplace_back(requested, storageBytes(f.layout.model));
+  };
+  const TargetSearch s = searchTargetRms(sphere, o, "sphere");
+  EXPECT_FALSE(s.reached);
+  EXPECT_EQ(s.stop, TargetSearch::Stop::StorageLimit);
+  EXPECT_TRUE(s.met.rms && s.met.folds && !s.met.normals);
+  ASSERT_GE(trials.size(), 2u);
+  // Every trial after the first (which reached the RMS) is under the cap ...
+  for (std::size_t k = 1; k < trials.size(); ++k) EXPECT_LE(double(trials[k].second), cap);
+  // ... the last is the count shrunk to the cap, not the next in the growth sequence, whose
+  // model would have been over it ...
+  const std::uint32_t before = trials[trials.size() - 2].first;
+  AutoLayoutOptions next = o.layout;
+  next.frames = static_cast<std::uint32_t>(std::ceil(before * o.growth));
+  EXPECT_GT(double(storageBytes(autoLayout(sphere, next, "sphere").model)), cap);
+  EXPECT_LT(trials.back().first, next.frames);
+  EXPECT_GT(trials.back().first, before);
+  // ... and the answer is the closest: the least deviation of the trials within RMS and folds.
+  EXPECT_EQ(s.best.layout.model.frames.size(), autoLayout(
+                                                   sphere,
+                                                   [&] {
+                                                     AutoLayoutOptions l = o.layout;
+                                                     l.frames = trials.back().first;
+                                                     return l;
+                                                   }(),
+                                                   "sphere")
+                                                   .model.frames.size());
+}
+
+/// A target no smooth model of a coarse polyhedron reaches (a billionth of the diagonal).
+constexpr double kUnreachableRms = 1e-9;
+
+TEST(AutoLayout, WhereTheLayoutStopsGrowingTheSearchStopsWithoutFittingItAgain) {
+  // A coarse sphere (8 × 4, 48 triangles): its layouts grow until no triangle is left to
+  // collapse (96 frames: the triangles paired, four frames a pair), then a larger count makes
+  // the same layout, which the search does not fit a second time.
+  const Mesh coarse = testing::sphereMesh(1.0, 8, 4);
+  TargetSearchOptions o;
+  o.targetRms = kUnreachableRms;
+  o.tryGrid = false;
+  std::map<std::size_t, int> plainFits;  // frames made: plain fits of that layout
+  o.onTrial = [&](std::uint32_t, const AutoFit& f) {
+    if (!f.foldsPrevented) ++plainFits[f.layout.model.frames.size()];
+  };
+  const TargetSearch s = searchTargetRms(coarse, o, "coarse sphere");
+  EXPECT_FALSE(s.reached);
+  EXPECT_EQ(s.stop, TargetSearch::Stop::LayoutStopped);
+  ASSERT_FALSE(plainFits.empty());
+  AutoLayoutOptions all = o.layout;  // the largest layout the mesh gives
+  all.frames = o.maxFrames;
+  EXPECT_EQ(plainFits.rbegin()->first,
+            autoLayout(coarse, all, "coarse sphere").model.frames.size());
+  for (const auto& [frames, fits] : plainFits) EXPECT_EQ(fits, 1) << frames << " frames";
+}
+
 /// The fold bound of the search test below: no folded area at all. With the Jacobian
 /// barrier the mushroom's layouts fold far below the bound (the 18-frame one folded
 /// 0.105 % before it; now the 22- and 26-frame ones that reach 0.2 % fold 0.0011 % and
