@@ -273,6 +273,23 @@ py::dict iterationDict(const FitIteration& it) {
                   arg("measure") = measureDict(it.measure));
 }
 
+/// Why the target search stopped growing its layouts, as the report's "search_stop" names it.
+const char* searchStopName(TargetSearch::Stop stop) {
+  switch (stop) {
+    case TargetSearch::Stop::Reached:
+      return "reached";
+    case TargetSearch::Stop::LayoutStopped:
+      return "layout stopped";
+    case TargetSearch::Stop::GrowthLimit:
+      return "growth limit";
+    case TargetSearch::Stop::NormalsStalled:
+      return "normals stalled";
+    case TargetSearch::Stop::StorageLimit:
+      return "storage limit";
+  }
+  return "unknown";
+}
+
 /// The library's report as pdesurf.rebuild's dict (docs/python.md).
 py::dict reportDict(RebuildResult& result) {
   const RebuildReport& r = result.report;
@@ -306,6 +323,7 @@ py::dict reportDict(RebuildResult& result) {
     report["folds_reached"] = r.search->met.folds;
     report["normals_reached"] = r.search->met.normals;
     report["trials"] = r.search->trials;
+    report["search_stop"] = searchStopName(r.search->stop);
     report["grid"] = r.automatic ? r.automatic->grid : 0;
   }
   return report;

@@ -284,6 +284,7 @@ def test_rebuild_automatic_layout_is_the_cli_rebuild(choice, cgal_mesh, tmp_path
     assert normals_line(report["normals"]) in printed.splitlines()
     if choice[0] == "--target-rms":
         assert report["target_reached"] and report["rms_reached"]
+        assert report["search_stop"] == "reached"
         assert "reached both ways" in printed
         assert max(report["rms"]) <= 0.005
         assert f"({report['trials']} layout" in printed
@@ -321,6 +322,8 @@ def test_rebuild_max_normal_deviation_is_the_cli_option(cgal_mesh, tmp_path):
     assert report["rms_reached"] and report["folds_reached"]
     assert not report["normals_reached"] and not report["target_reached"]
     assert report["normals"]["rms_degrees"] > 0
+    # Why the search stopped: the deviation fell too little a doubling (docs/rebuild.md).
+    assert report["search_stop"] == "normals stalled"
     assert "NOT the normal deviation of 0°" in printed
 
 

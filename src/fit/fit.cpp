@@ -78,7 +78,7 @@ constexpr double kFoldAllowance = 0.005;
 /// where they are (the least squares, below).
 constexpr double kUnweightedFrame = 1e-9;
 
-/// The Jacobian barrier (addFoldTerms): a sample's determinant (S_u × S_v)·m is held above
+/// The Jacobian barrier (addTangentTerms): a sample's determinant (S_u × S_v)·m is held above
 /// this share of its frame's mean |S_u × S_v| ...
 constexpr double kBarrierFloor = 0.1;
 /// ... with this many times the fold-free term's weight λ (the folded area at 100 frames on
@@ -416,6 +416,10 @@ class Fitter {
     laplacian_.setFromTriplets(triplets.begin(), triplets.end());
   }
 
+  /// The terms on the patches' tangents S_u, S_v at the surface samples: the fold-free term,
+  /// the Jacobian barrier that comes with it, and the normal-alignment term, each added where
+  /// its weight is above 0.
+  ///
   /// The fold-free term (FitOptions::conformalWeight; docs/rebuild.md, "Folds"): per surface
   /// sample (frame k, u, v), with m the mesh's normal at its closest point turned to the way
   /// the frame must face (the surface's majority orientation, the frame's flip), the residual
@@ -440,8 +444,8 @@ class Fitter {
   /// weighted ν diag² w_i, w_i the sample's share of the surface's area: the rank-one
   /// (a ⊗ m)(a ⊗ m)ᵀ per tangent in the frame's normal block.
   template <int Slots, class Blocks, class Unknown>
-  void addFoldTerms(const Evaluation& current, Blocks& blocks, Eigen::VectorXd& rhs,
-                    const Unknown& unknown) const {
+  void addTangentTerms(const Evaluation& current, Blocks& blocks, Eigen::VectorXd& rhs,
+                       const Unknown& unknown) const {
     using Weights = Eigen::Matrix<double, Slots, 1>;
     const std::vector<SampleGrid::Point>& grid = grid_.points;
     const std::size_t nFrames = model_.frames.size(), perFrame = grid.size();
@@ -576,7 +580,7 @@ class Fitter {
         rhs.segment<3>(3 * unknown(p.frame, i)) += p.weight * a[i] * mt;
     }
     if (options_.conformalWeight > 0.0 || options_.normalWeight > 0.0)
-      addFoldTerms<Slots>(current, blocks, rhs, unknown);
+      addTangentTerms<Slots>(current, blocks, rhs, unknown);
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(nFrames * 9 * Slots * Slots);
     std::vector<char> used(static_cast<std::size_t>(n), 0);
