@@ -1,6 +1,7 @@
 #include "rebuild_auto.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include <fmt/format.h>
 
@@ -111,6 +112,9 @@ void printTrial(const RebuildOptions& options, std::uint32_t requested, const Au
       layout, f.foldsPrevented && !options.fit.preventFolds ? ", steps that fold more refused" : "",
       percent(f.distance.aToB.rmsRelative), percent(f.distance.bToA.rmsRelative),
       percent(f.normals.foldedArea), f.normals.rmsDegrees, verdict);
+  // A search runs for minutes: each trial's line goes out as it ends, also into a pipe or a
+  // log file (where stdout is fully buffered).
+  std::fflush(stdout);
 }
 
 void printSearch(const RebuildOptions& options, const RebuildReport& report) {
