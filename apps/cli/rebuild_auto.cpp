@@ -119,6 +119,7 @@ void printTrial(const RebuildOptions& options, std::uint32_t requested, const Au
 
 void printSearch(const RebuildOptions& options, const RebuildReport& report) {
   const TargetSearchReport& s = *report.search;
+  const TargetSearchOptions search = targetSearchOptions(options);
   const AutoLayoutReport& best = *report.automatic;
   const std::string bounds = boundsText(s.maxFoldedArea, s.maxNormalDeviation);
   const std::string answer =
@@ -140,13 +141,11 @@ void printSearch(const RebuildOptions& options, const RebuildReport& report) {
   else if (s.stop == TargetSearch::Stop::StorageLimit)
     fmt::print(
         "target RMS {} reached both ways, but NOT within {} ({} tried): a larger layout's "
-        "model would take more than {} bytes ({:g}x the mesh's storage, at least {}); the "
+        "model would take more than {:.0f} bytes ({:g}x the mesh's storage, at least {}); the "
         "closest, {} (--frames N fits a layout of any size)\n",
         percent(s.targetRms), bounds, count(s.trials, "layout"),
-        std::max<std::size_t>(
-            static_cast<std::size_t>(kMaxStorageRatio * double(report.referenceStorageBytes)),
-            kMinStorageCap),
-        kMaxStorageRatio, kMinStorageCap, answer);
+        storageCap(report.referenceStorageBytes, search), search.maxStorageRatio,
+        search.minStorageCap, answer);
   else if (s.met.rms)
     fmt::print(
         "target RMS {} reached both ways, but NOT within {} ({} tried, up to {}x the smallest "

@@ -182,6 +182,11 @@ struct TargetCheck {
 /// maxNormalDeviation).
 TargetCheck checkTarget(const AutoFit& fit, const TargetSearchOptions& options);
 
+/// The most bytes a layout tried past the RMS may take, for a mesh of `meshBytes`
+/// (storageBytes): maxStorageRatio times them, at least minStorageCap; infinite where
+/// maxStorageRatio is 0 (no cap).
+double storageCap(std::size_t meshBytes, const TargetSearchOptions& options);
+
 struct TargetSearch {
   /// Why the frame count stopped growing.
   enum class Stop {

@@ -3,6 +3,7 @@
 // target accuracy").
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -43,6 +44,11 @@ AutoFit fitAutoLayout(const Mesh& mesh, const AutoLayoutOptions& layout, const F
 TargetCheck checkTarget(const AutoFit& f, const TargetSearchOptions& options) {
   return {f.worseRms() <= options.targetRms, f.normals.foldedArea <= options.maxFoldedArea,
           f.normals.rmsDegrees <= options.maxNormalDeviation};
+}
+
+double storageCap(std::size_t meshBytes, const TargetSearchOptions& options) {
+  if (!(options.maxStorageRatio > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::max(options.maxStorageRatio * double(meshBytes), double(options.minStorageCap));
 }
 
 namespace {
@@ -142,13 +148,8 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
   std::uint32_t firstRms = 0;  // the first count that reached the RMS (missing a bound)
   std::optional<Trial> previous;
   std::optional<AutoFit> beforeStall;  // the trial before the deviation stalled
-  // Past the RMS, no layout whose model would take more bytes than this (maxStorageRatio
-  // times the mesh's storage, at least minStorageCap).
-  const double storageCap =
-      std::max(options.maxStorageRatio * double(storageBytes(mesh)), double(options.minStorageCap));
-  auto overCap = [&](const AutoLayout& l) {
-    return options.maxStorageRatio > 0.0 && double(storageBytes(l.model)) > storageCap;
-  };
+  // Past the RMS, no layout whose model would take more bytes than this.
+  const double cap = storageCap(storageBytes(mesh), options);
   bool capped = false;  // this trial's layout is the largest under the storage cap
   search.stop = TargetSearch::Stop::LayoutStopped;
   for (;;) {
@@ -190,17 +191,20 @@ TargetSearch searchTargetRms(const Mesh& mesh, const TargetSearchOptions& option
     // Past the RMS, a layout over the storage cap is shrunk (its count scaled by the cap over
     // its bytes, a few times) to the largest under it, which is tried last; where none is
     // larger than this trial's, the search stops here.
-    if (firstRms > 0 && overCap(layout)) {
-      for (int k = 0; k < 8 && overCap(layout) && n > stands; ++k) {
-        n = std::max(stands, static_cast<std::uint32_t>(n * storageCap /
-                                                        double(storageBytes(layout.model))));
-        layout = layoutOf(n);
+    if (firstRms > 0 && std::isfinite(cap)) {
+      double bytes = double(storageBytes(layout.model));
+      if (bytes > cap) {
+        for (int k = 0; k < 8 && bytes > cap && n > stands; ++k) {
+          n = std::max(stands, static_cast<std::uint32_t>(n * cap / bytes));
+          layout = layoutOf(n);
+          bytes = double(storageBytes(layout.model));
+        }
+        if (bytes > cap || layout.model.frames.size() <= t.made) {
+          search.stop = TargetSearch::Stop::StorageLimit;
+          break;
+        }
+        capped = true;
       }
-      if (overCap(layout) || layout.model.frames.size() <= t.made) {
-        search.stop = TargetSearch::Stop::StorageLimit;
-        break;
-      }
-      capped = true;
     }
     previous = std::move(t);
   }
